@@ -1,0 +1,52 @@
+#include "cli/cli.hpp"
+
+#include "cli/commands.hpp"
+#include "core/error.hpp"
+
+#include <iostream>
+#include <map>
+
+namespace hilite::cli {
+
+int run(int argc, char** argv) {
+    CLI::App app{"hilite: the highlight analyzer. Renders a plane under a distant light offscreen (OpenGL via "
+                 "OSMesa or EGL) and measures the specular highlight's shape against the angle of incidence.",
+                 "hilite"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "hilite 0.1.0");
+    std::map<CLI::App*, Action> actions;
+    auto add = [&](const char* name, const char* desc, Action (*fn)(CLI::App&)) {
+        CLI::App* sub = app.add_subcommand(name, desc);
+        actions[sub] = fn(*sub);
+    };
+    add("render", "render the plane to PNG / PFM (measurement or photo view)", &addRender);
+    add("measure", "measure the highlight: ellipse, aspect, eccentricity, per incidence angle", &addMeasure);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "hilite: " << e.what() << "\n";
+        return 2;
+    }
+    try {
+        for (auto& [sub, action] : actions)
+            if (sub->parsed()) return action();
+    } catch (const InputError& e) {
+        std::cerr << "hilite: " << e.what() << "\n";
+        return 2;
+    } catch (const SystemError& e) {
+        std::cerr << "hilite: " << e.what() << "\n";
+        return 3;
+    } catch (const std::exception& e) {
+        std::cerr << "hilite: internal error: " << e.what() << "\n";
+        return 3;
+    }
+    return 0;
+}
+
+}  // namespace hilite::cli

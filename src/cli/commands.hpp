@@ -1,0 +1,15 @@
+#pragma once
+// One function per subcommand: each adds its flags to the app and returns the action to run.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace hilite::cli {
+
+using Action = std::function<int()>;
+
+Action addRender(CLI::App& app);
+Action addMeasure(CLI::App& app);
+
+}  // namespace hilite::cli

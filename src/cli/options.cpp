@@ -1,0 +1,157 @@
+#include "cli/options.hpp"
+
+#include "core/error.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace hilite::cli {
+
+namespace {
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+double parseNumber(const std::string& flag, const std::string& text) {
+    size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(text, &used);
+    } catch (...) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size()) throw InputError(flag + ": '" + text + "' is not a number");
+    return v;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::string cur;
+    std::istringstream in(s);
+    while (std::getline(in, cur, sep)) out.push_back(cur);
+    if (!s.empty() && s.back() == sep) out.push_back("");
+    return out;
+}
+
+}  // namespace
+
+double checkRange(const std::string& flag, double v, double lo, double hi) {
+    if (!std::isfinite(v) || v < lo || v > hi)
+        throw InputError(flag + ": must be a finite number in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(v) + ")");
+    return v;
+}
+
+void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHelp) {
+    app.add_option("--model", f.model, "specular model: phong (reflection lobe) | blinn | beckmann | ggx (microfacet)")
+        ->capture_default_str();
+    app.add_option("--exponent", f.exponent, "phong/blinn exponent n, in [0, 1e8]")->capture_default_str();
+    app.add_option("--roughness", f.roughness, "beckmann m / ggx alpha (the formulas' symbols), in [1e-4, 10]")
+        ->capture_default_str();
+    app.add_option("--fresnel", f.fresnel, "none (F = 1) | schlick")->capture_default_str();
+    app.add_option("--f0", f.f0, "Schlick F0: V or R,G,B, each in [0, 1]")->capture_default_str();
+    app.add_option("--geometry", f.geometry, "implicit (G = cos_i cos_o) | smith (height-correlated)")
+        ->capture_default_str();
+    app.add_option("--incidence", f.incidence, incidenceHelp)->capture_default_str();
+    app.add_option("--azimuth", f.azimuth, "light azimuth phi_i in degrees, [-360, 360]")->capture_default_str();
+    app.add_option("--irradiance", f.irradiance, "light irradiance E (normal to the light), in [0, 1e6]")
+        ->capture_default_str();
+    app.add_option("--size", f.size, "image size: PX or WxH, each in [1, 16384]")->capture_default_str();
+    app.add_option("--view", f.view, "measure (camera on the mirror direction) | photo (looking across the plane)")
+        ->capture_default_str();
+    app.add_option("--elevation", f.elevation, "photo view: camera elevation in degrees, (0, 90]; default 90 - incidence");
+    app.add_option("--distance", f.distance, "photo view: camera distance from the origin, in [1e-3, 1e6]")
+        ->capture_default_str();
+    app.add_option("--gl-backend", f.backend, "auto | osmesa | egl (default: $HILITE_GL_BACKEND, else auto)");
+}
+
+brdf::Params brdfParams(const SceneFlags& f) {
+    brdf::Params p;
+    auto model = brdf::parseModel(f.model);
+    if (!model) throw InputError("--model: unknown model '" + f.model + "' (allowed: phong, blinn, beckmann, ggx)");
+    p.model = *model;
+    p.exponent = checkRange("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent);
+    p.roughness = checkRange("--roughness", f.roughness, brdf::kMinRoughness, brdf::kMaxRoughness);
+    auto fresnel = brdf::parseFresnel(f.fresnel);
+    if (!fresnel) throw InputError("--fresnel: unknown '" + f.fresnel + "' (allowed: none, schlick)");
+    p.fresnel = *fresnel;
+    auto geometry = brdf::parseGeometry(f.geometry);
+    if (!geometry) throw InputError("--geometry: unknown '" + f.geometry + "' (allowed: implicit, smith)");
+    p.geometry = *geometry;
+    const auto parts = split(f.f0, ',');
+    if (parts.size() != 1 && parts.size() != 3) throw InputError("--f0: expected V or R,G,B (got '" + f.f0 + "')");
+    for (int c = 0; c < 3; ++c)
+        p.f0[c] = checkRange("--f0", parseNumber("--f0", parts[parts.size() == 1 ? 0 : size_t(c)]), 0.0, 1.0);
+    return p;
+}
+
+void parseSize(const std::string& s, int& width, int& height) {
+    const auto x = s.find('x');
+    const double w = parseNumber("--size", s.substr(0, x));
+    const double h = x == std::string::npos ? w : parseNumber("--size", s.substr(x + 1));
+    for (double v : {w, h})
+        if (!(v >= 1 && v <= 16384) || v != std::floor(v))
+            throw InputError("--size: each side must be a whole number in [1, 16384] (got '" + s + "')");
+    width = int(w);
+    height = int(h);
+    // Colour + depth attachments and the readback: 36 bytes a pixel. Refuse what the machine cannot hold.
+    const double bytes = 36.0 * w * h;
+    const double avail = double(sysconf(_SC_AVPHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    if (avail > 0 && bytes > 0.8 * avail)
+        throw InputError("--size: " + s + " needs " + fmt(bytes / 1e9) + " GB, more than this machine has free");
+}
+
+std::vector<double> parseIncidence(const std::string& s, bool allowMany) {
+    std::vector<double> out;
+    if (s.find(':') != std::string::npos) {
+        const auto p = split(s, ':');
+        if (p.size() != 3) throw InputError("--incidence: a range is START:STOP:STEP (got '" + s + "')");
+        const double a = checkRange("--incidence", parseNumber("--incidence", p[0]), 0, 90);
+        const double b = checkRange("--incidence", parseNumber("--incidence", p[1]), 0, 90);
+        const double step = parseNumber("--incidence", p[2]);
+        if (!(step > 0) || b < a) throw InputError("--incidence: range needs START <= STOP and STEP > 0 (got '" + s + "')");
+        const long n = std::lround(std::floor((b - a) / step + 1e-9));
+        if (n > 100000) throw InputError("--incidence: more than 100000 angles in '" + s + "'");
+        for (long i = 0; i <= n; ++i) out.push_back(a + double(i) * step);
+    } else {
+        for (const auto& part : split(s, ','))
+            out.push_back(checkRange("--incidence", parseNumber("--incidence", part), 0, 90));
+    }
+    if (out.empty()) throw InputError("--incidence: no angle given");
+    if (!allowMany && out.size() > 1) throw InputError("--incidence: render takes one angle (got '" + s + "')");
+    return out;
+}
+
+View parseView(const std::string& s) {
+    if (s == "measure") return View::Measure;
+    if (s == "photo") return View::Photo;
+    throw InputError("--view: unknown view '" + s + "' (allowed: measure, photo)");
+}
+
+gl::Backend parseBackendFlag(const std::string& s) {
+    if (s.empty()) return gl::backendFromEnvironment();
+    if (auto b = gl::parseBackend(s)) return *b;
+    throw InputError("--gl-backend: unknown backend '" + s + "' (allowed: auto, osmesa, egl)");
+}
+
+PinholeCamera viewCamera(const SceneFlags& f, View view, const render::Scene& scene, int width, int height) {
+    if (view == View::Measure) {
+        const double fov = f.fov > 0 ? f.fov : 30.0;
+        const MirrorChart chart = scene.light.chart();
+        // Keep the camera above the plane when the mirror direction is at the horizon.
+        dvec3 center = chart.wr();
+        if (center.z < 1e-6) center = glm::normalize(dvec3(center.x, center.y, 1e-6));
+        return PinholeCamera::measurement(chart, center, fov, width, height);
+    }
+    const double elevation = f.elevation > 0 ? f.elevation : std::max(0.5, 90.0 - scene.light.incidenceDeg);
+    checkRange("--elevation", elevation, 1e-3, 90.0);
+    checkRange("--distance", f.distance, 1e-3, 1e6);
+    const double fov = f.fov > 0 ? f.fov : 40.0;
+    return PinholeCamera::photo(elevation, scene.light.azimuthDeg + 180.0, f.distance, fov, width, height);
+}
+
+}  // namespace hilite::cli

@@ -1,0 +1,53 @@
+#pragma once
+// The scene flags shared by `render`, `measure` and later subcommands, their ranges, and their checks.
+// Every check throws InputError naming the flag, the allowed range and the value given.
+
+#include "core/camera.hpp"
+#include "gl/context.hpp"
+#include "render/scene.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+namespace hilite::cli {
+
+enum class View { Measure, Photo };
+
+struct SceneFlags {
+    std::string model = "ggx";
+    double exponent = 1000.0;
+    double roughness = 0.1;
+    std::string fresnel = "none";
+    std::string f0 = "0.04";
+    std::string geometry = "implicit";
+    std::string incidence = "45";  ///< render: one angle; measure: one, a list or a range
+    double azimuth = 0.0;
+    double irradiance = 1.0;
+    std::string size = "512";
+    double fov = 0.0;  ///< 0: the view's default (render) or automatic framing (measure)
+    std::string view = "measure";
+    double elevation = -1.0;  ///< photo view; < 0: 90 - incidence (the mirror direction)
+    double distance = 10.0;   ///< photo view
+    std::string backend = "";  ///< empty: $HILITE_GL_BACKEND or auto
+};
+
+/// Adds the scene flags to a subcommand; `incidenceHelp` describes the accepted --incidence forms.
+void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHelp);
+
+/// The validated BRDF of the flags.
+brdf::Params brdfParams(const SceneFlags& f);
+/// Parses --size "N" or "WxH" within 1..16384 and the memory this machine has.
+void parseSize(const std::string& s, int& width, int& height);
+/// Parses --incidence: "30", "0,30,60" or "0:85:5" (start:stop:step, inclusive), each in [0, 90].
+std::vector<double> parseIncidence(const std::string& s, bool allowMany);
+View parseView(const std::string& s);
+gl::Backend parseBackendFlag(const std::string& s);
+/// A finite number within [lo, hi] or throws InputError "flag: must be ... (got ...)".
+double checkRange(const std::string& flag, double v, double lo, double hi);
+
+/// The camera of the chosen view, for a scene at one incidence angle.
+PinholeCamera viewCamera(const SceneFlags& f, View view, const render::Scene& scene, int width, int height);
+
+}  // namespace hilite::cli

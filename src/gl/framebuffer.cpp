@@ -1,0 +1,62 @@
+#include "gl/framebuffer.hpp"
+
+#include "core/error.hpp"
+#include "gl/check.hpp"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <string>
+
+namespace hilite::gl {
+
+int Framebuffer::maxSize() {
+    GLint rb = 0, tex = 0, vp[2] = {0, 0};
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &tex);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+    return std::min({rb, tex, vp[0], vp[1]});
+}
+
+Framebuffer::Framebuffer(int width, int height) : m_width(width), m_height(height) {
+    const int limit = maxSize();
+    if (width < 1 || height < 1 || width > limit || height > limit)
+        throw InputError("framebuffer " + std::to_string(width) + "x" + std::to_string(height) +
+                         " outside this GL's range 1.." + std::to_string(limit));
+    glGenFramebuffers(1, &m_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
+    glGenRenderbuffers(1, &m_color);
+    glBindRenderbuffer(GL_RENDERBUFFER, m_color);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_color);
+    glGenRenderbuffers(1, &m_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, m_depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_depth);
+    HILITE_GL_CHECK_WHAT("creating the float framebuffer");
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw SystemError("float framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+}
+
+Framebuffer::~Framebuffer() {
+    if (m_depth) glDeleteRenderbuffers(1, &m_depth);
+    if (m_color) glDeleteRenderbuffers(1, &m_color);
+    if (m_fbo) glDeleteFramebuffers(1, &m_fbo);
+}
+
+void Framebuffer::bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
+    glViewport(0, 0, m_width, m_height);
+}
+
+void Framebuffer::read(ImageF& out) const {
+    if (out.width != m_width || out.height != m_height || out.channels != 4) out = ImageF(m_width, m_height, 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, m_width, m_height, GL_RGBA, GL_FLOAT, out.data.data());
+    HILITE_GL_CHECK_WHAT("glReadPixels");
+}
+
+}  // namespace hilite::gl

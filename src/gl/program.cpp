@@ -1,0 +1,118 @@
+#include "gl/program.hpp"
+
+#include "core/error.hpp"
+#include "gl/check.hpp"
+
+#include <glad/gl.h>
+
+#include <regex>
+#include <sstream>
+
+namespace hilite::gl {
+
+std::string joinSources(const std::vector<SourcePiece>& pieces) {
+    std::string out;
+    for (size_t i = 0; i < pieces.size(); ++i) {
+        // Piece 0 holds #version, which must come first; later pieces announce where they come from.
+        if (i > 0) out += "#line " + std::to_string(pieces[i].firstLine) + " " + std::to_string(i) + "\n";
+        out += pieces[i].text;
+        if (!out.empty() && out.back() != '\n') out += '\n';
+    }
+    return out;
+}
+
+std::string translateLog(const std::string& log, const std::vector<SourcePiece>& pieces) {
+    // Mesa writes "K:N(C): error: ...": K the source-string number set by #line, N the line.
+    static const std::regex loc(R"((\d+):(\d+)\((\d+)\))");
+    std::string out;
+    std::istringstream in(log);
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m;
+        if (std::regex_search(line, m, loc)) {
+            const size_t k = std::stoul(m[1]);
+            int n = std::stoi(m[2]);
+            if (k < pieces.size()) {
+                if (k == 0) n += pieces[0].firstLine - 1;
+                line = m.prefix().str() + pieces[k].file + ":" + std::to_string(n) + ":" + m[3].str() +
+                       m.suffix().str();
+            }
+        }
+        out += line + "\n";
+    }
+    return out;
+}
+
+namespace {
+
+GLuint compile(GLenum type, const std::vector<SourcePiece>& pieces) {
+    const std::string src = joinSources(pieces);
+    GLuint shader = glCreateShader(type);
+    const char* text = src.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        glGetShaderInfoLog(shader, len, nullptr, log.data());
+        glDeleteShader(shader);
+        const char* kind = type == GL_VERTEX_SHADER ? "vertex" : "fragment";
+        throw SystemError(std::string(kind) + " shader failed to compile:\n" + translateLog(log.c_str(), pieces));
+    }
+    return shader;
+}
+
+}  // namespace
+
+Program::Program(const std::vector<SourcePiece>& vertex, const std::vector<SourcePiece>& fragment) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, vertex);
+    GLuint fs = 0;
+    try {
+        fs = compile(GL_FRAGMENT_SHADER, fragment);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    m_id = glCreateProgram();
+    glAttachShader(m_id, vs);
+    glAttachShader(m_id, fs);
+    glLinkProgram(m_id);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(m_id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(m_id, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        glGetProgramInfoLog(m_id, len, nullptr, log.data());
+        glDeleteProgram(m_id);
+        m_id = 0;
+        throw SystemError("shader program failed to link (" + vertex.back().file + " + " + fragment.back().file +
+                          "):\n" + translateLog(log.c_str(), fragment));
+    }
+    HILITE_GL_CHECK_WHAT("glLinkProgram");
+}
+
+Program::~Program() {
+    if (m_id) glDeleteProgram(m_id);
+}
+
+void Program::use() const { glUseProgram(m_id); }
+
+int Program::uniform(const char* name) const {
+    auto it = m_locations.find(name);
+    if (it != m_locations.end()) return it->second;
+    const int loc = glGetUniformLocation(m_id, name);
+    m_locations.emplace(name, loc);
+    return loc;
+}
+
+void Program::set(const char* name, float v) const { glUniform1f(uniform(name), v); }
+void Program::set(const char* name, float x, float y) const { glUniform2f(uniform(name), x, y); }
+void Program::set(const char* name, float x, float y, float z) const { glUniform3f(uniform(name), x, y, z); }
+void Program::setMat4(const char* name, const float* m) const { glUniformMatrix4fv(uniform(name), 1, GL_FALSE, m); }
+
+}  // namespace hilite::gl

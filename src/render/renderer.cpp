@@ -1,0 +1,132 @@
+#include "render/renderer.hpp"
+
+#include "gl/check.hpp"
+
+#include <glad/gl.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <ostream>
+
+namespace hilite::render {
+
+std::ostream& operator<<(std::ostream& os, const Scene& s) {
+    return os << s.brdf << " incidence=" << s.light.incidenceDeg << " azimuth=" << s.light.azimuthDeg
+              << " irradiance=" << s.light.irradiance;
+}
+
+namespace {
+
+/// The infinite plane z = 0: four triangles from the origin to points at infinity (w = 0).
+const float kPlane[] = {
+    0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0,   //
+    0, 0, 0, 1, 0, 1, 0, 0, -1, 0, 0, 0,  //
+    0, 0, 0, 1, -1, 0, 0, 0, 0, -1, 0, 0,  //
+    0, 0, 0, 1, 0, -1, 0, 0, 1, 0, 0, 0,  //
+};
+
+/// View-projection of a pinhole camera. Near/far bound depth only: GL_DEPTH_CLAMP keeps the plane's
+/// far part (at infinity) instead of clipping it.
+glm::mat4 viewProjection(const PinholeCamera& c) {
+    const double distance = glm::length(c.position);
+    const double nearZ = 1e-3 * distance, farZ = 1e3 * distance;
+    glm::dmat4 view(1.0);
+    for (int i = 0; i < 3; ++i) {
+        view[i][0] = c.right[i];
+        view[i][1] = c.up[i];
+        view[i][2] = c.back[i];
+    }
+    view[3][0] = -glm::dot(c.right, c.position);
+    view[3][1] = -glm::dot(c.up, c.position);
+    view[3][2] = -glm::dot(c.back, c.position);
+    glm::dmat4 proj(0.0);
+    proj[0][0] = 1.0 / c.tanHalfX;
+    proj[1][1] = 1.0 / c.tanHalfY;
+    proj[2][2] = -(farZ + nearZ) / (farZ - nearZ);
+    proj[2][3] = -1.0;
+    proj[3][2] = -2.0 * farZ * nearZ / (farZ - nearZ);
+    return glm::mat4(proj * view);
+}
+
+void set3(const gl::Program& p, const char* name, const dvec3& v) {
+    p.set(name, float(v.x), float(v.y), float(v.z));
+}
+
+}  // namespace
+
+Renderer::Renderer(gl::Context& context, std::string shaderDir)
+    : m_context(context), m_shaderDir(shaderDir.empty() ? shaderDirectory() : std::move(shaderDir)) {
+    glGenVertexArrays(1, &m_vao);
+    glBindVertexArray(m_vao);
+    glGenBuffers(1, &m_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof kPlane, kPlane, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(0);
+    HILITE_GL_CHECK_WHAT("creating the plane mesh");
+}
+
+Renderer::~Renderer() {
+    m_programs.clear();
+    m_fbo.reset();
+    if (m_vbo) glDeleteBuffers(1, &m_vbo);
+    if (m_vao) glDeleteVertexArrays(1, &m_vao);
+}
+
+const gl::Program& Renderer::program(const brdf::Params& p, Output out) {
+    const std::string key = effectKey(p, out);
+    auto it = m_programs.find(key);
+    if (it != m_programs.end()) return *it->second;
+    const ProgramSources src = assemble(p, out, m_shaderDir);
+    auto prog = std::make_unique<gl::Program>(src.vertex, src.fragment);
+    return *m_programs.emplace(key, std::move(prog)).first->second;
+}
+
+void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) const {
+    prog.setMat4("uViewProj", glm::value_ptr(viewProjection(cam)));
+    set3(prog, "uCamBack", cam.back);
+    set3(prog, "uCamRight", cam.right);
+    set3(prog, "uCamUp", cam.up);
+    prog.set("uTanHalf", float(cam.tanHalfX), float(cam.tanHalfY));
+    prog.set("uViewport", float(cam.width), float(cam.height));
+    set3(prog, "uWi", scene.light.direction());
+    prog.set("uIrradiance", float(scene.light.irradiance));
+    const MirrorChart chart = scene.light.chart();
+    set3(prog, "uWr", chart.wr());
+    set3(prog, "uEu", chart.eu());
+    set3(prog, "uEv", chart.ev());
+    const brdf::Params& b = scene.brdf;
+    if (prog.uniform("uExponent") >= 0) prog.set("uExponent", float(b.exponent));
+    if (prog.uniform("uRoughness") >= 0) prog.set("uRoughness", float(b.roughness));
+    if (prog.uniform("uF0") >= 0) set3(prog, "uF0", b.f0);
+}
+
+void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image) {
+    const gl::Program& prog = program(scene.brdf, out);
+    if (!m_fbo || m_fbo->width() != camera.width || m_fbo->height() != camera.height) {
+        m_fbo.reset();
+        m_fbo = std::make_unique<gl::Framebuffer>(camera.width, camera.height);
+    }
+    m_fbo->bind();
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);  // the camera may see the plane's fan from either winding
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_DEPTH_CLAMP);
+    glDepthFunc(GL_LEQUAL);
+    glClearColor(0.f, 0.f, 0.f, 0.f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    prog.use();
+    setUniforms(prog, scene, camera);
+    glBindVertexArray(m_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 12);
+    HILITE_GL_CHECK_WHAT("drawing the plane");
+    m_fbo->read(image);
+}
+
+ImageF Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out) {
+    ImageF img;
+    render(scene, camera, out, img);
+    return img;
+}
+
+}  // namespace hilite::render

@@ -1,0 +1,45 @@
+#pragma once
+// Renders the plane through a pinhole camera into the float framebuffer and reads it back.
+// Programs are compiled once per effect set and reused; the framebuffer is reused while its size holds.
+
+#include "core/camera.hpp"
+#include "core/image.hpp"
+#include "gl/context.hpp"
+#include "gl/framebuffer.hpp"
+#include "gl/program.hpp"
+#include "render/scene.hpp"
+#include "render/shader_source.hpp"
+
+#include <map>
+#include <memory>
+#include <string>
+
+namespace hilite::render {
+
+class Renderer {
+public:
+    /// `shaderDir` empty: found with shaderDirectory().
+    explicit Renderer(gl::Context& context, std::string shaderDir = "");
+    ~Renderer();
+
+    /// Draws and reads back: 4 floats per pixel, row 0 at the bottom (see shaders/shade.frag for the
+    /// channels of each output).
+    void render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image);
+    ImageF render(const Scene& scene, const PinholeCamera& camera, Output out);
+
+    /// The program for an effect set (compiled on first use).
+    const gl::Program& program(const brdf::Params& p, Output out);
+    size_t programCount() const { return m_programs.size(); }
+    const std::string& shaderDir() const { return m_shaderDir; }
+
+private:
+    void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) const;
+
+    gl::Context& m_context;
+    std::string m_shaderDir;
+    std::map<std::string, std::unique_ptr<gl::Program>> m_programs;
+    std::unique_ptr<gl::Framebuffer> m_fbo;
+    unsigned int m_vao = 0, m_vbo = 0;
+};
+
+}  // namespace hilite::render
