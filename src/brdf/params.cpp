@@ -36,6 +36,10 @@ std::vector<std::string> modelNames() { return {"phong", "blinn", "beckmann", "g
 bool isMicrofacet(Model m) { return m != Model::Phong; }
 bool usesExponent(Model m) { return m == Model::Phong || m == Model::Blinn; }
 
+std::ostream& operator<<(std::ostream& os, Model m) { return os << toString(m); }
+std::ostream& operator<<(std::ostream& os, Fresnel f) { return os << toString(f); }
+std::ostream& operator<<(std::ostream& os, Geometry g) { return os << toString(g); }
+
 std::ostream& operator<<(std::ostream& os, const Params& p) {
     os << "model=" << toString(p.model);
     if (usesExponent(p.model)) os << " exponent=" << p.exponent;

@@ -48,6 +48,9 @@ struct Params {
 };
 
 std::ostream& operator<<(std::ostream&, const Params&);
+std::ostream& operator<<(std::ostream&, Model);
+std::ostream& operator<<(std::ostream&, Fresnel);
+std::ostream& operator<<(std::ostream&, Geometry);
 
 /// Allowed ranges, checked at the CLI boundary (the error names the flag and the range).
 constexpr double kMinExponent = 0.0, kMaxExponent = 1e8;

@@ -88,9 +88,4 @@ Action addRender(CLI::App& app) {
     return [f] { return runRender(*f); };
 }
 
-Action addMeasure(CLI::App& app) {
-    (void)app;
-    return [] { return 0; };
-}
-
 }  // namespace hilite::cli

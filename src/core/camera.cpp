@@ -52,7 +52,7 @@ PinholeCamera PinholeCamera::measurement(const MirrorChart& chart, const dvec3& 
 
 PinholeCamera PinholeCamera::photo(double elevationDeg, double azimuthDeg, double distance, double fovDeg,
                                    int width, int height) {
-    const dvec3 dir = sphericalDirection(deg2rad(90.0 - elevationDeg), deg2rad(azimuthDeg));
+    const dvec3 dir = sphericalDirectionDeg(90.0 - elevationDeg, azimuthDeg);
     return lookAt(distance * dir, dvec3(0.0), dvec3(0, 0, 1), fovDeg, width, height);
 }
 

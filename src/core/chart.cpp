@@ -3,8 +3,19 @@
 namespace hilite {
 
 MirrorChart::MirrorChart(double theta_i, double phi_i) {
-    const double c = std::cos(theta_i), s = std::sin(theta_i);
-    const double cp = std::cos(phi_i), sp = std::sin(phi_i);
+    set(std::cos(theta_i), std::sin(theta_i), std::cos(phi_i), std::sin(phi_i));
+}
+
+MirrorChart MirrorChart::fromDegrees(double thetaDeg, double phiDeg) {
+    double c, s, cp, sp;
+    cosSinDeg(thetaDeg, c, s);
+    cosSinDeg(phiDeg, cp, sp);
+    MirrorChart chart;
+    chart.set(c, s, cp, sp);
+    return chart;
+}
+
+void MirrorChart::set(double c, double s, double cp, double sp) {
     m_wi = {s * cp, s * sp, c};
     m_wr = {-s * cp, -s * sp, c};
     m_eu = {c * cp, c * sp, s};

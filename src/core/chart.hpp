@@ -11,6 +11,8 @@ class MirrorChart {
 public:
     /// theta_i, phi_i in radians.
     MirrorChart(double theta_i, double phi_i);
+    /// theta_i, phi_i in degrees, exact at multiples of 90 (see cosSinDeg).
+    static MirrorChart fromDegrees(double thetaDeg, double phiDeg);
 
     const dvec3& wi() const { return m_wi; }  ///< towards the light
     const dvec3& wr() const { return m_wr; }  ///< mirror direction of wi
@@ -25,6 +27,8 @@ public:
     double areaPerSolidAngle(const dvec3& we) const;
 
 private:
+    MirrorChart() = default;
+    void set(double c, double s, double cp, double sp);
     dvec3 m_wi, m_wr, m_eu, m_ev;
 };
 

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <ostream>
 
 namespace hilite::gl {
 
@@ -18,6 +19,8 @@ const char* toString(Backend b) {
     }
     return "?";
 }
+
+std::ostream& operator<<(std::ostream& os, Backend b) { return os << toString(b); }
 
 std::optional<Backend> parseBackend(const std::string& s) {
     for (Backend b : {Backend::Auto, Backend::OSMesa, Backend::EGL})

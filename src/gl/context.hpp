@@ -5,6 +5,7 @@
 // GL entry points are loaded through the backend's GetProcAddress (glad), never linked from libGL.
 // One context is current per process at a time: creating a context loads the GL pointers for it.
 
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@ namespace hilite::gl {
 
 enum class Backend { Auto, OSMesa, EGL };
 const char* toString(Backend);
+std::ostream& operator<<(std::ostream&, Backend);
 std::optional<Backend> parseBackend(const std::string&);  ///< "auto", "osmesa", "egl"
 /// The backend asked for by the environment variable HILITE_GL_BACKEND, or Auto.
 Backend backendFromEnvironment();

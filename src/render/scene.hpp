@@ -15,8 +15,8 @@ struct DirectionalLight {
     double incidenceDeg = 45.0;
     double azimuthDeg = 0.0;
     double irradiance = 1.0;
-    dvec3 direction() const { return sphericalDirection(deg2rad(incidenceDeg), deg2rad(azimuthDeg)); }
-    MirrorChart chart() const { return MirrorChart(deg2rad(incidenceDeg), deg2rad(azimuthDeg)); }
+    dvec3 direction() const { return sphericalDirectionDeg(incidenceDeg, azimuthDeg); }
+    MirrorChart chart() const { return MirrorChart::fromDegrees(incidenceDeg, azimuthDeg); }
 };
 
 struct Scene {

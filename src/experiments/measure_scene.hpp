@@ -1,0 +1,48 @@
+#pragma once
+// One highlight measurement of a scene, end to end: aim and zoom the measurement view (automatic
+// framing), render, read back, analyse. Also the double-precision reference of the same scene.
+
+#include "core/camera.hpp"
+#include "measure/highlight.hpp"
+#include "render/renderer.hpp"
+#include "render/scene.hpp"
+
+#include <string>
+
+namespace hilite::experiments {
+
+struct MeasureSetup {
+    int width = 512, height = 512;
+    double fovDeg = 0.0;      ///< > 0: fixed framing (camera on the mirror direction); 0: automatic framing
+    measure::Options options;
+    int coarseSize = 64;      ///< automatic framing: size of the aiming renders
+    int maxRenders = 5;       ///< automatic framing: at most this many renders in all (aiming + final)
+    double fill = 0.8;        ///< automatic framing: the region's half-extent as a fraction of the half-frame
+};
+
+struct Measurement {
+    measure::Shape shape;
+    int renders = 0;          ///< GL renders it took (aiming + final)
+    double fovDeg = 0;        ///< field of view of the final render
+    dvec3 center{0, 0, 1};    ///< exitant direction at the centre of the final frame
+    double render_ms = 0;     ///< GL draw + readback, all renders
+    double measure_ms = 0;    ///< analysis of the final render (and framing arithmetic)
+};
+
+/// The lobe of a scene as a function of chart coordinates, evaluated by the double twin.
+measure::LobeFunction twinLobe(const render::Scene& scene);
+
+/// Angular radius (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
+/// direction, searched along +-u and +-v; a seed for framing and for the reference's search disc.
+double twinHalfWidth(const render::Scene& scene, double threshold);
+
+/// Measures the highlight in GL with fixed or automatic framing.
+Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);
+
+/// The CPU double-precision reference of the same definition (no GL).
+Measurement measureReference(const render::Scene& scene, const measure::Options& options);
+
+/// The measurement camera looking along `center` with the given field of view.
+PinholeCamera measurementCamera(const render::Scene& scene, const dvec3& center, double fovDeg, int w, int h);
+
+}  // namespace hilite::experiments

@@ -1,0 +1,94 @@
+#pragma once
+// The highlight measurement of ../shared/notes/measurement.md: the region {L >= frac * peak} in the
+// azimuthal-equidistant chart (u, v) about the mirror direction, reduced to the ellipse with the same
+// area moments. Two implementations share the definition and the ellipse fit:
+//   - measureImage: the GL measurement view, pixel by pixel (each pixel in or out, weighted by its (u,v) area);
+//   - measureReference: a double-precision oracle on an analytic lobe (polar contour about the peak).
+// Depends on core only: no GL, no BRDF.
+
+#include <functional>
+#include <iosfwd>
+#include <vector>
+
+namespace hilite::measure {
+
+/// Diagnostics that qualify (or replace) the numbers.
+enum class Flag {
+    Clipped,        ///< the region touches the image border: it may continue outside the frame
+    HorizonCut,     ///< the region ends at the horizon (we.z = 0) rather than at the threshold
+    UnderResolved,  ///< fewer than Options::minPixelsAcross pixels across the minor axis
+    NoHighlight,    ///< peak is 0 (or nothing visible): the shape fields are left 0
+    CoversFrame,    ///< every visible pixel is in the region: the frame shows no outside
+};
+
+/// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame" (the CLI/JSON spelling).
+const char* toString(Flag);
+std::ostream& operator<<(std::ostream&, Flag);
+
+struct Options {
+    double threshold = 0.5;   ///< frac: region = L >= threshold * peak, in (0, 1)
+    int minPixelsAcross = 8;  ///< under-resolved below this many pixels across the minor axis (full width 2*minor)
+    /// measureImage only. true: a pixel the contour crosses counts with its covered fraction, estimated from
+    /// a straight contour through the pixel located by linear interpolation of L (errors O(pixel^2)).
+    /// false: each pixel counts whole or not at all by the L at its centre (lattice noise of ~pixel^1.5).
+    bool subpixel = true;
+};
+std::ostream& operator<<(std::ostream&, const Options&);
+/// Throws InputError unless threshold is in (0, 1) and minPixelsAcross >= 1 (both measure functions call it).
+void validate(const Options&);
+
+/// The measured highlight. Angles in degrees, relative to the mirror direction (u = v = 0).
+struct Shape {
+    double peak = 0;                        ///< largest L
+    double peak_u_deg = 0, peak_v_deg = 0;  ///< where it is (image: the peak pixel's centre)
+    double aspect = 0, eccentricity = 0;    ///< sqrt(lmin/lmax), sqrt(1 - lmin/lmax)
+    double major_deg = 0, minor_deg = 0;    ///< semi-axes 2 sqrt(lmax), 2 sqrt(lmin)
+    double orientation_deg = 0;             ///< major axis angle from +u towards +v, in (-90, 90]
+    double centroid_u_deg = 0, centroid_v_deg = 0;
+    double fwhm_u_deg = 0, fwhm_v_deg = 0;  ///< full width of the region on the lines through the peak along u, v
+    double area_deg2 = 0;                   ///< area of the region in the (u,v) plane
+    long region_pixels = 0;                 ///< 0 for the reference
+    double minor_pixels = 0;                ///< pixels across the minor axis, 2*minor / pitch; +inf for the reference
+    std::vector<Flag> flags;
+
+    bool has(Flag f) const;
+};
+std::ostream& operator<<(std::ostream&, const Shape&);
+
+/// Zeroth, first and central second area moments of a region in the (u,v) plane (radians).
+struct AreaMoments {
+    double area = 0;                    ///< M0 (rad^2)
+    double mean_u = 0, mean_v = 0;      ///< centroid (rad)
+    double cuu = 0, cuv = 0, cvv = 0;   ///< central second moments / M0 (rad^2)
+};
+
+/// \brief Fill the ellipse fields of `s` (aspect, eccentricity, axes, orientation, centroid, area)
+/// from the moments, by the closed-form eigen-decomposition of the symmetric 2x2 matrix.
+void setEllipse(Shape& s, const AreaMoments& m);
+
+/// \brief Analyse the GL measurement view.
+/// \param pixels width*height*4 floats, row-major, row 0 at the bottom, per pixel (L, u, v, w): L the
+///   lobe value, (u, v) the pixel centre's chart coordinates in radians, w the pixel's area in the (u,v)
+///   plane in rad^2 (w = 0: the pixel sees no surface, sky or below the horizon, and has L = 0).
+/// Boundary treatment: a pixel is "in" (region_pixels, the flags) when the L at its centre is
+/// >= threshold * peak. For the moments each pixel counts with weight w * f at its centre's (u, v), where
+/// f = 1 inside and 0 outside; with opt.subpixel, the pixels on the contour (a visible 4-neighbour on
+/// the other side) get f = the fraction of the pixel on the inside of the straight line L = T fitted by
+/// the local gradient (central differences). A pixel beside the sky counts whole: the horizon is taken at
+/// the pixel edge. fwhm_u/v are sub-pixel in both modes (linear interpolation of L across each crossing).
+Shape measureImage(const float* pixels, int width, int height, const Options& opt);
+
+/// A lobe as a function of the chart coordinates (radians).
+struct LobeFunction {
+    std::function<double(double u, double v)> lobe;    ///< L >= 0, and 0 below the horizon
+    std::function<bool(double u, double v)> visible;   ///< (u,v) is above the horizon (we.z > 0)
+};
+
+/// \brief Double-precision reference, independent of GL (aims at ~1e-6 relative on smooth contours).
+/// \param searchRadius bounds the peak search: a disc of this radius (radians) about the hint.
+/// \param hint_u, hint_v a starting guess for the peak (radians).
+/// The region is assumed star-shaped about the peak (true of every single-lobe BRDF here).
+Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u = 0,
+                       double hint_v = 0);
+
+}  // namespace hilite::measure

@@ -1,0 +1,121 @@
+// The command line as a user meets it: exit codes, one-line errors, nothing written on bad input.
+
+#include <doctest/doctest.h>
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out;  ///< stdout and stderr
+};
+
+Result hilite(const std::string& args) {
+    const std::string cmd = std::string(HILITE_EXE) + " " + args + " 2>&1";
+    Result r;
+    FILE* p = popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf{};
+    while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
+    const int status = pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+int lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+std::string tmpPath(const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("hilite-cli-" + std::to_string(getpid()) + "-" + name)).string();
+}
+
+}  // namespace
+
+TEST_CASE("cli::render bad input: one line naming the flag, exit 2, nothing written") {
+    const std::string out = tmpPath("bad.png");
+    struct Case { const char* args; const char* mentions; };
+    for (const Case c : {Case{"--model lambertian", "--model"}, Case{"--roughness -1", "--roughness"},
+                         Case{"--roughness nan", "--roughness"}, Case{"--roughness inf", "--roughness"},
+                         Case{"--exponent -5", "--exponent"}, Case{"--exponent nan", "--exponent"},
+                         Case{"--incidence 91", "--incidence"}, Case{"--incidence -1", "--incidence"},
+                         Case{"--size 0", "--size"}, Case{"--size 16385", "--size"},
+                         Case{"--size 16384x16384x", "--size"}, Case{"--fresnel maybe", "--fresnel"},
+                         Case{"--f0 1.5", "--f0"}, Case{"--geometry none2", "--geometry"},
+                         Case{"--view sideways", "--view"}}) {
+        CAPTURE(c.args);
+        const auto r = hilite(std::string("render ") + c.args + " -o " + out);
+        CHECK(r.code == 2);
+        CHECK(lines(r.out) == 1);
+        CHECK(r.out.find(c.mentions) != std::string::npos);
+        CHECK_FALSE(std::filesystem::exists(out));
+    }
+}
+
+TEST_CASE("cli::render an unwritable output leaves an existing file untouched") {
+    const auto r = hilite("render --size 8 -o /nonexistent-dir/x.png");
+    CHECK(r.code == 2);
+    CHECK(r.out.find("-o") != std::string::npos);
+    CHECK(lines(r.out) == 1);
+
+    const std::string good = tmpPath("keep.png");
+    std::ofstream(good) << "precious";
+    const auto bad = hilite("render --size 8 --roughness -3 -o " + good);
+    CHECK(bad.code == 2);
+    std::stringstream ss;
+    ss << std::ifstream(good).rdbuf();
+    CHECK(ss.str() == "precious");
+    std::filesystem::remove(good);
+}
+
+TEST_CASE("cli::render writes PNG and PFM") {
+    const std::string png = tmpPath("ok.png"), pfm = tmpPath("ok.pfm");
+    const auto r = hilite("render --size 16x8 --model phong --exponent 100 --incidence 30 -o " + png + " --float " + pfm);
+    CHECK(r.code == 0);
+    CHECK(std::filesystem::file_size(pfm) == std::string("PF\n16 8\n-1.0\n").size() + 16 * 8 * 3 * 4);
+    CHECK(std::filesystem::file_size(png) > 8);
+    std::filesystem::remove(png);
+    std::filesystem::remove(pfm);
+}
+
+TEST_CASE("cli::measure JSON lines carry the contract's fields") {
+    const auto r = hilite("measure --model ggx --roughness 0.1 --incidence 0:60:30 --size 128 --json");
+    REQUIRE(r.code == 0);
+    CHECK(lines(r.out) == 3);
+    for (const char* field : {"\"model\"", "\"incidence_deg\"", "\"aspect\"", "\"eccentricity\"", "\"major_deg\"",
+                              "\"minor_deg\"", "\"orientation_deg\"", "\"centroid_u_deg\"", "\"centroid_v_deg\"",
+                              "\"fwhm_u_deg\"", "\"fwhm_v_deg\"", "\"peak\"", "\"flags\"", "\"renders\"", "\"size\"",
+                              "\"render_ms\"", "\"measure_ms\""}) {
+        CAPTURE(field);
+        CHECK(r.out.find(field) != std::string::npos);
+    }
+}
+
+TEST_CASE("cli::measure bad input") {
+    for (const char* args : {"--threshold 1.5", "--threshold 0", "--incidence 0:95:5", "--incidence 10:0:5",
+                             "--incidence 0:10:-1", "--incidence a,b", "--boundary fuzzy", "--gl-backend glx"}) {
+        CAPTURE(args);
+        const auto r = hilite(std::string("measure ") + args);
+        CHECK(r.code == 2);
+        CHECK(lines(r.out) == 1);
+    }
+}
+
+TEST_CASE("cli help documents every subcommand") {
+    const auto r = hilite("--help");
+    CHECK(r.code == 0);
+    for (const char* sub : {"render", "measure"}) CHECK(r.out.find(sub) != std::string::npos);
+    const auto m = hilite("measure --help");
+    CHECK(m.out.find("--threshold") != std::string::npos);
+}

@@ -1,0 +1,76 @@
+#pragma once
+// Shared pieces of the GL tests: one context per backend, and the comparison of rendered pixels
+// against the CPU double twin evaluated at each pixel's exitant direction.
+
+#include "brdf/evaluate.hpp"
+#include "core/camera.hpp"
+#include "gl/context.hpp"
+#include "render/renderer.hpp"
+
+#include <doctest/doctest.h>
+
+#include <ostream>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace hilite::test {
+
+/// The backends this machine has (probed once per process).
+inline const std::vector<gl::Backend>& backends() {
+    static const std::vector<gl::Backend> b = gl::Context::available();
+    return b;
+}
+
+/// A context + renderer on the default backend, shared by the tests of one executable.
+struct GlEnv {
+    std::unique_ptr<gl::Context> context;
+    std::unique_ptr<render::Renderer> renderer;
+    explicit GlEnv(gl::Backend b = gl::Backend::Auto)
+        : context(std::make_unique<gl::Context>(b)), renderer(std::make_unique<render::Renderer>(*context)) {}
+};
+inline GlEnv& glEnv() {
+    static GlEnv env;
+    env.context->makeCurrent();
+    return env;
+}
+
+struct TwinComparison {
+    int compared = 0;        ///< pixels above 1e-3 of the peak
+    double maxRelError = 0;  ///< max |gl - twin| / twin over those pixels and channels
+    bool allFinite = true;
+    bool allNonNegative = true;
+    double peak = 0;
+};
+
+/// Renders the colour output and compares every pixel whose twin value exceeds 1e-3 of the peak.
+inline TwinComparison compareWithTwin(render::Renderer& r, const render::Scene& scene, const PinholeCamera& cam) {
+    const ImageF img = r.render(scene, cam, render::Output::Color);
+    TwinComparison out;
+    const dvec3 wi = scene.light.direction();
+    std::vector<dvec3> twin(size_t(cam.width) * size_t(cam.height));
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const dvec3 we = -cam.ray(x + 0.5, y + 0.5);
+            dvec3 t = we.z > 0 ? brdf::radiance(scene.brdf, wi, we, scene.light.irradiance) : dvec3(0.0);
+            twin[size_t(y) * size_t(cam.width) + size_t(x)] = t;
+            out.peak = std::max({out.peak, t.x, t.y, t.z});
+        }
+    for (size_t i = 0; i < twin.size(); ++i) {
+        const float* px = img.data.data() + 4 * i;
+        for (int c = 0; c < 3; ++c) {
+            const double g = px[c], t = twin[i][c];
+            if (!std::isfinite(g)) out.allFinite = false;
+            if (g < 0) out.allNonNegative = false;
+            if (t > 1e-3 * out.peak) {
+                out.maxRelError = std::max(out.maxRelError, std::abs(g - t) / t);
+                if (c == 0) ++out.compared;
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace hilite::test
