@@ -1,8 +1,10 @@
 #include "cli/cli.hpp"
 
 #include "cli/commands.hpp"
+#include "cli/scene_file.hpp"
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 
@@ -14,6 +16,8 @@ int run(int argc, char** argv) {
                  "hilite"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "hilite 0.1.0");
+    // A scene file's values come first and the command line's flags later: the last one given wins.
+    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     std::map<CLI::App*, Action> actions;
     auto add = [&](const char* name, const char* desc, Action (*fn)(CLI::App&)) {
         CLI::App* sub = app.add_subcommand(name, desc);
@@ -21,8 +25,12 @@ int run(int argc, char** argv) {
     };
     add("render", "render the plane to PNG / PFM (measurement or photo view)", &addRender);
     add("measure", "measure the highlight: ellipse, aspect, eccentricity, per incidence angle", &addMeasure);
+    std::map<std::string, std::string> origins;
     try {
-        app.parse(argc, argv);
+        std::vector<std::string> args(argv + 1, argv + argc);
+        origins = expandSceneFile(args, app);
+        std::reverse(args.begin(), args.end());  // CLI11 takes the vector last argument first
+        app.parse(args);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
@@ -30,6 +38,9 @@ int run(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
+        std::cerr << "hilite: " << withOrigin(e.what(), origins) << "\n";
+        return 2;
+    } catch (const InputError& e) {
         std::cerr << "hilite: " << e.what() << "\n";
         return 2;
     }
@@ -37,7 +48,7 @@ int run(int argc, char** argv) {
         for (auto& [sub, action] : actions)
             if (sub->parsed()) return action();
     } catch (const InputError& e) {
-        std::cerr << "hilite: " << e.what() << "\n";
+        std::cerr << "hilite: " << withOrigin(e.what(), origins) << "\n";
         return 2;
     } catch (const SystemError& e) {
         std::cerr << "hilite: " << e.what() << "\n";

@@ -2,6 +2,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "cli/scene_file.hpp"
 #include "core/error.hpp"
 #include "experiments/measure_scene.hpp"
 
@@ -122,6 +123,7 @@ Action addMeasure(CLI::App& app) {
         ->capture_default_str();
     app.add_flag("--json", f->json, "one JSON object per line instead of a table");
     app.add_flag("--reference", f->reference, "use the CPU double-precision reference instead of GL");
+    assignSections(app, 0);
     app.footer("Example: hilite measure --model ggx --roughness 0.1 --incidence 0:85:5 --json");
     return [f] { return runMeasure(*f); };
 }

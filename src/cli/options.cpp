@@ -47,6 +47,7 @@ double checkRange(const std::string& flag, double v, double lo, double hi) {
 }
 
 void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHelp) {
+    app.add_option("--scene", f.sceneFile, "scene file (TOML) whose keys are these flags; flags given here override it");
     app.add_option("--model", f.model, "specular model: phong (reflection lobe) | blinn | beckmann | ggx (microfacet)")
         ->capture_default_str();
     app.add_option("--exponent", f.exponent, "phong/blinn exponent n, in [0, 1e8]")->capture_default_str();

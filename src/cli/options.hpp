@@ -31,6 +31,7 @@ struct SceneFlags {
     double elevation = -1.0;  ///< photo view; < 0: 90 - incidence (the mirror direction)
     double distance = 10.0;   ///< photo view
     std::string backend = "";  ///< empty: $HILITE_GL_BACKEND or auto
+    std::string sceneFile;     ///< --scene: already expanded into flags by cli::run
 };
 
 /// Adds the scene flags to a subcommand; `incidenceHelp` describes the accepted --incidence forms.

@@ -2,6 +2,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "cli/scene_file.hpp"
 #include "core/error.hpp"
 #include "io/image_io.hpp"
 #include "render/renderer.hpp"
@@ -84,6 +85,7 @@ Action addRender(CLI::App& app) {
     app.add_option("--float", f->pfm, "float dump (PFM, exact RGB radiance)");
     app.add_option("--exposure", f->exposure, "PNG exposure: auto (peak = white) or stops EV (radiance x 2^EV)")
         ->capture_default_str();
+    assignSections(app, 0);
     app.footer("Example: hilite render --model ggx --roughness 0.1 --incidence 60 --view photo -o ggx60.png");
     return [f] { return runRender(*f); };
 }
