@@ -1,5 +1,7 @@
 // `hilite measure`: the highlight's shape per angle of incidence, as a table or JSON lines.
 
+#include "cli/measure_cmd.hpp"
+
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "cli/scene_file.hpp"
@@ -14,18 +16,7 @@
 
 namespace hilite::cli {
 
-namespace {
-
-struct MeasureFlags {
-    SceneFlags scene;
-    double threshold = 0.5;
-    int minPixels = 8;
-    std::string boundary = "subpixel";
-    bool json = false;
-    bool reference = false;
-};
-
-nlohmann::json row(const render::Scene& s, const experiments::Measurement& m, const MeasureFlags& f, int width,
+nlohmann::json measurementRow(const render::Scene& s, const experiments::Measurement& m, const MeasureFlags& f, int width,
                    int height, const std::string& method) {
     const measure::Shape& r = m.shape;
     nlohmann::json j;
@@ -72,13 +63,15 @@ void printTableRow(const nlohmann::json& j) {
                 num("centroid_v_deg"), num("fwhm_u_deg"), num("fwhm_v_deg"), flags.c_str());
 }
 
-int runMeasure(const MeasureFlags& f) {
-    render::Scene scene;
+ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
+    ResolvedMeasure r;
+    render::Scene& scene = r.scene;
     scene.brdf = brdfParams(f.scene);
     scene.light.azimuthDeg = checkRange("--azimuth", f.scene.azimuth, -360, 360);
     scene.light.irradiance = checkRange("--irradiance", f.scene.irradiance, 0, 1e6);
-    const std::vector<double> angles = parseIncidence(f.scene.incidence, true);
-    experiments::MeasureSetup setup;
+    r.angles = parseIncidence(f.scene.incidence, true);
+    scene.light.incidenceDeg = r.angles.front();
+    experiments::MeasureSetup& setup = r.setup;
     parseSize(f.scene.size, setup.width, setup.height);
     setup.fovDeg = checkRange("--fov", f.scene.fov, 0, 160);
     setup.options.threshold = f.threshold;
@@ -91,6 +84,15 @@ int runMeasure(const MeasureFlags& f) {
         throw InputError("--boundary: unknown '" + f.boundary + "' (allowed: subpixel, pixel)");
     setup.options.subpixel = f.boundary == "subpixel";
     if (f.scene.view != "measure") throw InputError("--view: measure always uses the measurement view");
+    return r;
+}
+
+namespace {
+
+int runMeasure(const MeasureFlags& f) {
+    ResolvedMeasure resolved = resolveMeasure(f);
+    render::Scene& scene = resolved.scene;
+    const experiments::MeasureSetup& setup = resolved.setup;
 
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<render::Renderer> renderer;
@@ -99,11 +101,11 @@ int runMeasure(const MeasureFlags& f) {
         renderer = std::make_unique<render::Renderer>(*context);
     }
     if (!f.json) printTableHeader();
-    for (double angle : angles) {
+    for (double angle : resolved.angles) {
         scene.light.incidenceDeg = angle;
         const experiments::Measurement m = f.reference ? experiments::measureReference(scene, setup.options)
                                                        : experiments::measureGl(*renderer, scene, setup);
-        const nlohmann::json j = row(scene, m, f, setup.width, setup.height, f.reference ? "reference" : "gl");
+        const nlohmann::json j = measurementRow(scene, m, f, setup.width, setup.height, f.reference ? "reference" : "gl");
         if (f.json) std::cout << j.dump() << "\n" << std::flush;
         else printTableRow(j);
     }
@@ -112,8 +114,8 @@ int runMeasure(const MeasureFlags& f) {
 
 }  // namespace
 
-Action addMeasure(CLI::App& app) {
-    auto f = std::make_shared<MeasureFlags>();
+void addMeasureFlags(CLI::App& app, MeasureFlags& flags) {
+    MeasureFlags* f = &flags;
     addSceneFlags(app, f->scene, "theta_i in degrees, [0, 90]: one angle (60), a list (0,30,60) or a range START:STOP:STEP (0:85:5)");
     app.add_option("--fov", f->scene.fov, "fixed framing: field of view in degrees, (0, 160]; default: automatic framing");
     app.add_option("--threshold", f->threshold, "region = lobe >= FRAC x peak, FRAC in (0, 1)")->capture_default_str();
@@ -124,6 +126,11 @@ Action addMeasure(CLI::App& app) {
     app.add_flag("--json", f->json, "one JSON object per line instead of a table");
     app.add_flag("--reference", f->reference, "use the CPU double-precision reference instead of GL");
     assignSections(app, 0);
+}
+
+Action addMeasure(CLI::App& app) {
+    auto f = std::make_shared<MeasureFlags>();
+    addMeasureFlags(app, *f);
     app.footer("Example: hilite measure --model ggx --roughness 0.1 --incidence 0:85:5 --json");
     return [f] { return runMeasure(*f); };
 }

@@ -136,6 +136,24 @@ std::vector<SceneArg> parseSceneToml(const std::string& text, const std::string&
         throw InputError(name + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
                          std::string(e.description()));
     }
+    return sceneArgs(doc, name, app);
+}
+
+SceneArg sceneArg(const std::string& name, const std::string& dottedKey, const toml::node& value, const CLI::App& app) {
+    const auto dot = dottedKey.find('.');
+    if (dot == std::string::npos)
+        throw InputError(where(name, value) + ": " + dottedKey + ": a scene key is 'table.key' (e.g. light.incidence)");
+    const std::string section = dottedKey.substr(0, dot);
+    if (std::find(kSections.begin(), kSections.end(), section) == kSections.end())
+        throw InputError(where(name, value) + ": " + dottedKey + ": unknown table '" + section +
+                         "' (allowed: material, light, camera, measurement, output)");
+    std::vector<SceneArg> out;
+    addKey(name, section, dottedKey.substr(dot + 1), value, app, out);
+    if (out.empty()) return SceneArg{};
+    return out.front();
+}
+
+std::vector<SceneArg> sceneArgs(const toml::table& doc, const std::string& name, const CLI::App& app) {
     std::vector<SceneArg> out;
     for (const auto& [k, node] : doc) {
         const std::string section(k.str());

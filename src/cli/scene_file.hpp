@@ -6,6 +6,7 @@
 // error names "scene.toml:4: material.roughness" instead of a flag the user never typed.
 
 #include <CLI/CLI.hpp>
+#include <toml++/toml.h>
 
 #include <map>
 #include <string>
@@ -27,6 +28,10 @@ std::string sectionOf(const CLI::Option& opt);
 /// unknown keys (with a did-you-mean suggestion), keys in the wrong table and values of the wrong type.
 std::vector<SceneArg> parseSceneToml(const std::string& text, const std::string& name, const CLI::App& app);
 std::vector<SceneArg> loadSceneFile(const std::string& path, const CLI::App& app);
+/// The scene tables of an already parsed document (e.g. an experiment's [scene]); `name` for messages.
+std::vector<SceneArg> sceneArgs(const toml::table& doc, const std::string& name, const CLI::App& app);
+/// One "section.key = value" (e.g. a sweep axis value) as a flag argument.
+SceneArg sceneArg(const std::string& name, const std::string& dottedKey, const toml::node& value, const CLI::App& app);
 
 /// Closest of `candidates` to `word` by edit distance, or "" if none is close.
 std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates);

@@ -1,0 +1,78 @@
+#pragma once
+// Experiment files (TOML): [experiment] name/title/description, [scene] a base scene (the tables of a
+// scene file), [[sweep]] axes (key + values or range), optional [match] (lobe widths matched at normal
+// incidence), [[plot]], [contact_sheet] and [summary]. See experiments/*.toml and the README.
+
+#include "cli/measure_cmd.hpp"
+#include "cli/scene_file.hpp"
+#include "experiments/plot.hpp"
+#include "gl/context.hpp"
+#include "render/renderer.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hilite::cli {
+
+struct Configuration {
+    long index = 0;
+    std::vector<SceneArg> args;  ///< base scene, then one value per sweep axis
+    nlohmann::json sweep;        ///< the axis values of this configuration ("light.incidence": 30, ...)
+};
+
+struct SweepAxis {
+    std::string key;                  ///< "light.incidence"
+    std::vector<std::string> values;  ///< as flag values
+    std::vector<int> lines;
+};
+
+struct Experiment {
+    std::string path, text;  ///< the file and its text (copied beside the results for merge)
+    std::string name, title, description;
+    std::vector<SceneArg> base;
+    std::vector<SweepAxis> axes;
+    std::vector<SceneArg> match;  ///< empty: no width matching
+    std::vector<experiments::PlotSpec> plots;
+    std::string sheetFile = "contact_sheet.png", sheetRowKey, sheetColumnKey, sheetSize = "256x192";
+    std::vector<std::string> sheetRows, sheetColumns;
+    std::string summarySeries, summaryX = "incidence_deg";
+    std::vector<double> summaryAt;
+
+    /// Every configuration, validated (a bad value anywhere fails before anything runs).
+    std::vector<Configuration> configurations() const;
+};
+
+/// A path, or the name of a file shipped in experiments/ (found beside the executable like the shaders).
+std::string findExperiment(const std::string& nameOrPath);
+Experiment loadExperiment(const std::string& path);
+void writeExperimentCopy(const Experiment& e, const std::string& dir);
+
+class ExperimentRunner {
+public:
+    ExperimentRunner(const Experiment& e, const std::string& backend);
+    ~ExperimentRunner();
+    /// The fixed CSV columns: config, the sweep keys, every scene parameter, every measurement field.
+    const std::vector<std::string>& columns() const { return m_columns; }
+    /// Measures one configuration: one JSON row.
+    nlohmann::json measure(const Configuration& c);
+    /// Plots, contact sheet and summary.md from the complete rows. seconds < 0: unknown (merge).
+    void finalize(const std::string& dir, const std::vector<nlohmann::json>& rows, double seconds);
+
+private:
+    ResolvedMeasure resolve(const std::vector<SceneArg>& args, MeasureFlags& flags, nlohmann::json* params) const;
+    void applyMatch(std::vector<SceneArg>& args, nlohmann::json& row);
+    render::Renderer& renderer();
+
+    const Experiment& m_exp;
+    std::string m_backend;
+    std::vector<std::string> m_columns;
+    double m_targetMajorDeg = 0;
+    std::map<std::string, double> m_matched;  ///< model -> matched width parameter
+    std::unique_ptr<gl::Context> m_context;
+    std::unique_ptr<render::Renderer> m_renderer;
+};
+
+}  // namespace hilite::cli

@@ -1,0 +1,242 @@
+// Runs the configurations of an experiment and makes its pictures and summary.
+
+#include "cli/experiment.hpp"
+#include "core/error.hpp"
+#include "io/image_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace hilite::cli {
+
+namespace {
+
+const std::vector<std::string> kMeasureColumns = {
+    "model", "incidence_deg", "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg",
+    "centroid_u_deg", "centroid_v_deg", "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg",
+    "area_deg2", "cos_incidence", "flags", "renders", "size", "fov_deg", "minor_pixels", "method",
+    "matched_parameter", "render_ms", "measure_ms"};
+const std::vector<std::string> kNotSceneParams = {"help", "scene", "output", "float", "exposure", "json",
+                                                  "reference", "gl-backend", "incidence"};
+
+std::string num(double v) {
+    std::ostringstream s;
+    s << std::setprecision(17) << v;
+    return s.str();
+}
+
+nlohmann::json typed(const std::string& v) {
+    char* end = nullptr;
+    const double d = std::strtod(v.c_str(), &end);
+    if (!v.empty() && end == v.c_str() + v.size() && std::isfinite(d)) return d;
+    return v;
+}
+
+std::string paramName(const CLI::Option& o) {
+    std::string n = o.get_lnames().front();
+    std::replace(n.begin(), n.end(), '-', '_');
+    return n;
+}
+
+bool isSceneParam(const CLI::Option& o) {
+    return !o.get_lnames().empty() && std::find(kNotSceneParams.begin(), kNotSceneParams.end(),
+                                                o.get_lnames().front()) == kNotSceneParams.end();
+}
+
+}  // namespace
+
+ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backend) : m_exp(e), m_backend(backend) {
+    CLI::App app;
+    MeasureFlags f;
+    addMeasureFlags(app, f);
+    m_columns.push_back("config");
+    for (const CLI::Option* o : app.get_options())
+        if (isSceneParam(*o) && std::find(kMeasureColumns.begin(), kMeasureColumns.end(), paramName(*o)) ==
+                                    kMeasureColumns.end())
+            m_columns.push_back(paramName(*o));
+    m_columns.insert(m_columns.end(), kMeasureColumns.begin(), kMeasureColumns.end());
+    if (!e.match.empty()) {
+        MeasureFlags mf;
+        std::vector<SceneArg> args = e.base;
+        args.insert(args.end(), e.match.begin(), e.match.end());
+        ResolvedMeasure target = resolve(args, mf, nullptr);
+        target.scene.light.incidenceDeg = 0;
+        m_targetMajorDeg = rad2deg(experiments::twinHalfWidth(target.scene, target.setup.options.threshold));
+    }
+}
+
+ExperimentRunner::~ExperimentRunner() = default;
+
+render::Renderer& ExperimentRunner::renderer() {
+    if (!m_renderer) {
+        m_context = std::make_unique<gl::Context>(parseBackendFlag(m_backend));
+        m_renderer = std::make_unique<render::Renderer>(*m_context);
+    }
+    return *m_renderer;
+}
+
+ResolvedMeasure ExperimentRunner::resolve(const std::vector<SceneArg>& args, MeasureFlags& flags,
+                                          nlohmann::json* params) const {
+    CLI::App app;
+    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    addMeasureFlags(app, flags);
+    std::vector<std::string> argv;
+    std::map<std::string, std::string> origins;
+    for (const auto& a : args) {
+        argv.push_back(a.flag);
+        if (!a.value.empty()) argv.push_back(a.value);
+        origins[a.flag] = a.origin;
+    }
+    std::reverse(argv.begin(), argv.end());
+    ResolvedMeasure r;
+    try {
+        app.parse(argv);
+        r = resolveMeasure(flags);
+    } catch (const CLI::ParseError& e) {
+        throw InputError(withOrigin(e.what(), origins));
+    } catch (const InputError& e) {
+        throw InputError(withOrigin(e.what(), origins));
+    }
+    if (params)
+        for (const CLI::Option* o : app.get_options())
+            if (isSceneParam(*o)) {
+                const std::string v = o->count() ? o->results().back() : o->get_default_str();
+                (*params)[paramName(*o)] = typed(v);
+            }
+    return r;
+}
+
+void ExperimentRunner::applyMatch(std::vector<SceneArg>& args, nlohmann::json& row) {
+    if (m_exp.match.empty()) return;
+    MeasureFlags f;
+    ResolvedMeasure r = resolve(args, f, nullptr);
+    r.scene.light.incidenceDeg = 0;
+    const std::string key = brdf::toString(r.scene.brdf.model);
+    const bool exponent = brdf::usesExponent(r.scene.brdf.model);
+    auto it = m_matched.find(key);
+    if (it == m_matched.end()) {
+        // Bisection in log(parameter) on the twin's half-width at normal incidence, where every isotropic
+        // lobe is round, so its angular radius is its semi-major axis.
+        double lo = std::log(exponent ? 1e-2 : 1e-4), hi = std::log(exponent ? 1e8 : 2.0);
+        for (int i = 0; i < 80; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (exponent ? r.scene.brdf.exponent : r.scene.brdf.roughness) = std::exp(mid);
+            const double w = rad2deg(experiments::twinHalfWidth(r.scene, r.setup.options.threshold));
+            ((w > m_targetMajorDeg) == exponent ? lo : hi) = mid;
+        }
+        it = m_matched.emplace(key, std::exp(0.5 * (lo + hi))).first;
+    }
+    args.push_back(SceneArg{exponent ? "--exponent" : "--roughness", num(it->second), "[match]"});
+    row["matched_parameter"] = it->second;
+}
+
+nlohmann::json ExperimentRunner::measure(const Configuration& c) {
+    nlohmann::json row;
+    row["config"] = c.index;
+    std::vector<SceneArg> args = c.args;
+    applyMatch(args, row);
+    MeasureFlags f;
+    nlohmann::json params;
+    ResolvedMeasure r = resolve(args, f, &params);
+    if (r.angles.size() != 1)
+        throw InputError(m_exp.path + ": light.incidence: one angle per configuration (sweep it with [[sweep]])");
+    for (auto& [k, v] : params.items()) row[k] = v;
+    const auto m = f.reference ? experiments::measureReference(r.scene, r.setup.options)
+                               : experiments::measureGl(renderer(), r.scene, r.setup);
+    const nlohmann::json measured =
+        measurementRow(r.scene, m, f, r.setup.width, r.setup.height, f.reference ? "reference" : "gl");
+    for (auto& [k, v] : measured.items()) row[k] = v;
+    return row;
+}
+
+void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohmann::json>& rows, double seconds) {
+    std::vector<std::string> notes;
+    for (const auto& p : m_exp.plots) {
+        std::string why;
+        if (!experiments::plot(dir, p, rows, why)) notes.push_back("plot " + p.file + " not made: " + why);
+    }
+    // Contact sheet: photo views, one row per sheet row value, one column per column value.
+    const bool sheet = !m_exp.sheetRows.empty() && !m_exp.sheetColumns.empty();
+    if (sheet) {
+        int tw = 256, th = 192;
+        parseSize(m_exp.sheetSize, tw, th);
+        const int gap = 4, cols = int(m_exp.sheetColumns.size()), nrows = int(m_exp.sheetRows.size());
+        ImageF sheetImg(cols * tw + (cols - 1) * gap, nrows * th + (nrows - 1) * gap, 4);
+        for (int ri = 0; ri < nrows; ++ri)
+            for (int ci = 0; ci < cols; ++ci) {
+                std::vector<SceneArg> args = m_exp.base;
+                auto flagOf = [](std::string key) {
+                    key = key.substr(key.find('.') + 1);
+                    std::replace(key.begin(), key.end(), '_', '-');
+                    return "--" + key;
+                };
+                args.push_back({flagOf(m_exp.sheetRowKey), m_exp.sheetRows[size_t(ri)], "[contact_sheet]"});
+                args.push_back({flagOf(m_exp.sheetColumnKey), m_exp.sheetColumns[size_t(ci)], "[contact_sheet]"});
+                nlohmann::json ignored;
+                applyMatch(args, ignored);
+                MeasureFlags f;
+                ResolvedMeasure r = resolve(args, f, nullptr);
+                const PinholeCamera cam = viewCamera(f.scene, View::Photo, r.scene, tw, th);
+                const ImageF tile = renderer().render(r.scene, cam, render::Output::Color);
+                double peak = 0;
+                for (size_t i = 0; i < tile.data.size(); i += 4) peak = std::max(peak, double(tile.data[i + 1]));
+                const double scale = peak > 0 ? 1.0 / peak : 1.0;  // each tile exposed to its own peak
+                for (int y = 0; y < th; ++y)
+                    for (int x = 0; x < tw; ++x)
+                        for (int c = 0; c < 4; ++c)
+                            sheetImg.pixel(ci * (tw + gap) + x, (nrows - 1 - ri) * (th + gap) + y)[c] =
+                                float(tile.pixel(x, y)[c] * (c < 3 ? scale : 1.0));
+            }
+        io::writePng(dir + "/" + m_exp.sheetFile, sheetImg, {});
+    }
+    // summary.md
+    std::ostringstream md;
+    md << "# " << m_exp.title << "\n\n" << m_exp.description << "\n\n";
+    md << rows.size() << " configurations";
+    if (seconds >= 0) md << ", measured in " << std::fixed << std::setprecision(2) << seconds << " s";
+    md << std::defaultfloat << ". Rows: [results.csv](results.csv), [results.jsonl](results.jsonl).\n\n";
+    if (!m_matched.empty()) {
+        md << "Lobe widths matched at normal incidence to a semi-major axis of " << std::setprecision(5)
+           << m_targetMajorDeg << " deg:\n\n| model | parameter |\n|---|---|\n";
+        for (const auto& [k, v] : m_matched) md << "| " << k << " | " << std::setprecision(6) << v << " |\n";
+        md << "\n";
+    }
+    for (const auto& p : m_exp.plots) md << "![" << p.title << "](" << p.file << ")\n\n";
+    if (sheet)
+        md << "![contact sheet](" << m_exp.sheetFile << ")\n\nContact sheet: photo views, rows = " << m_exp.sheetRowKey
+           << " (top to bottom), columns = " << m_exp.sheetColumnKey << " (left to right); each tile is exposed to its own peak.\n\n";
+    if (!m_exp.summarySeries.empty()) {
+        md << "## Headline numbers\n\n| " << m_exp.summarySeries << " | " << m_exp.summaryX
+           << " | aspect | cos | eccentricity | semi-major (deg) | semi-minor (deg) | centroid u (deg) | flags |\n"
+           << "|---|---|---|---|---|---|---|---|---|\n";
+        std::map<std::string, std::pair<double, double>> worst;  // series -> max |aspect-1|, max |aspect-cos|
+        std::vector<std::string> order;
+        for (const auto& r : rows) {
+            if (!r.contains(m_exp.summarySeries) || r["aspect"].is_null()) continue;
+            const std::string s = r[m_exp.summarySeries].is_string() ? r[m_exp.summarySeries].get<std::string>()
+                                                                      : r[m_exp.summarySeries].dump();
+            if (!worst.count(s)) order.push_back(s), worst[s] = {0, 0};
+            const double x = r.value(m_exp.summaryX, 0.0), a = r["aspect"].get<double>();
+            if (r["flags"].empty() && x <= 80) {
+                worst[s].first = std::max(worst[s].first, std::abs(a - 1));
+                worst[s].second = std::max(worst[s].second, std::abs(a - r.value("cos_incidence", 1.0)));
+            }
+            if (std::find(m_exp.summaryAt.begin(), m_exp.summaryAt.end(), x) == m_exp.summaryAt.end()) continue;
+            std::string flags;
+            for (const auto& fl : r["flags"]) flags += (flags.empty() ? "" : ", ") + fl.get<std::string>();
+            md << std::setprecision(5) << "| " << s << " | " << x << " | " << a << " | " << r.value("cos_incidence", 0.0)
+               << " | " << r.value("eccentricity", 0.0) << " | " << r.value("major_deg", 0.0) << " | "
+               << r.value("minor_deg", 0.0) << " | " << r.value("centroid_u_deg", 0.0) << " | " << flags << " |\n";
+        }
+        md << "\nOver the rows without flags at " << m_exp.summaryX << " <= 80:\n\n| " << m_exp.summarySeries
+           << " | max abs(aspect - 1) | max abs(aspect - cos theta_i) |\n|---|---|---|\n";
+        for (const auto& s : order)
+            md << std::setprecision(3) << "| " << s << " | " << worst[s].first << " | " << worst[s].second << " |\n";
+    }
+    for (const auto& n : notes) md << "\nNote: " << n << "\n";
+    io::writeFileAtomic(dir + "/summary.md", md.str());
+}
+
+}  // namespace hilite::cli
