@@ -133,6 +133,7 @@ Experiment loadExperiment(const std::string& path) {
             spec.series = t["series"].value_or(std::string());
             spec.xlabel = t["xlabel"].value_or(std::string());
             spec.ylabel = t["ylabel"].value_or(std::string());
+            spec.key = t["key"].value_or(spec.key);
             if (const auto* th = t["theory"].as_array())
                 for (const auto& c : *th)
                     if (const auto* pair = c.as_array(); pair && pair->size() == 2)

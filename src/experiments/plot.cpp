@@ -42,7 +42,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
        << "set title " << nlohmann::json(spec.title).dump() << "\n"
        << "set xlabel " << nlohmann::json(spec.xlabel.empty() ? spec.x : spec.xlabel).dump() << "\n"
        << "set ylabel " << nlohmann::json(spec.ylabel.empty() ? spec.y : spec.ylabel).dump() << "\n"
-       << "set key bottom left box opaque\nset grid\n";
+       << "set key " << spec.key << " box opaque\nset grid\n";
     gp << "plot ";
     bool first = true;
     for (size_t i = 0; i < order.size(); ++i) {

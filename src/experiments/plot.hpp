@@ -15,6 +15,7 @@ struct PlotSpec {
     std::string series;             ///< row field whose values make separate lines ("" = one line)
     std::vector<std::pair<std::string, std::string>> theory;  ///< (title, gnuplot expression of x)
     std::string xlabel, ylabel;
+    std::string key = "bottom left";  ///< gnuplot key position
 };
 
 /// Writes dir/<spec.file> from the rows (skipping rows whose y is null). Returns false (and says why in
