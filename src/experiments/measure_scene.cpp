@@ -108,7 +108,8 @@ double twinHalfWidth(const render::Scene& scene, double threshold) {
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup) {
     Measurement m;
     Frame frame{liftAboveHorizon(scene.light.chart().wr()), setup.fovDeg};
-    ImageF img;
+    // Per-thread buffers: reused across calls, so the readback never reallocates (4 MB at 512x512).
+    thread_local ImageF coarse, img;
     if (setup.fovDeg <= 0) {
         // Seed from the twin's half-width, then let coarse renders correct the aim (off-specular shift,
         // anisotropy, horizon) until the region sits inside the frame and fills most of it.
@@ -119,11 +120,11 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
             const PinholeCamera cam =
                 measurementCamera(scene, frame.center, frame.fovDeg, setup.coarseSize, setup.coarseSize);
             auto t0 = Clock::now();
-            renderer.render(scene, cam, render::Output::Measure, img);
+            renderer.render(scene, cam, render::Output::Measure, coarse);
             m.render_ms += msSince(t0);
             ++m.renders;
             t0 = Clock::now();
-            const RegionBox box = regionBox(img, setup.options.threshold);
+            const RegionBox box = regionBox(coarse, setup.options.threshold);
             const bool good = box.empty() || reframe(cam, box, setup.fill, frame);
             m.measure_ms += msSince(t0);
             if (good) break;

@@ -5,6 +5,7 @@
 #include <glad/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <ostream>
 
 namespace hilite::render {
@@ -67,7 +68,7 @@ Renderer::Renderer(gl::Context& context, std::string shaderDir)
 
 Renderer::~Renderer() {
     m_programs.clear();
-    m_fbo.reset();
+    m_fbos.clear();
     if (m_vbo) glDeleteBuffers(1, &m_vbo);
     if (m_vao) glDeleteVertexArrays(1, &m_vao);
 }
@@ -102,11 +103,8 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
 
 void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image) {
     const gl::Program& prog = program(scene.brdf, out);
-    if (!m_fbo || m_fbo->width() != camera.width || m_fbo->height() != camera.height) {
-        m_fbo.reset();
-        m_fbo = std::make_unique<gl::Framebuffer>(camera.width, camera.height);
-    }
-    m_fbo->bind();
+    gl::Framebuffer& fbo = framebuffer(camera.width, camera.height);
+    fbo.bind();
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);  // the camera may see the plane's fan from either winding
     glEnable(GL_DEPTH_TEST);
@@ -120,7 +118,19 @@ void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output ou
     glBindVertexArray(m_vao);
     glDrawArrays(GL_TRIANGLES, 0, 12);
     HILITE_GL_CHECK_WHAT("drawing the plane");
-    m_fbo->read(image);
+    fbo.read(image);
+}
+
+gl::Framebuffer& Renderer::framebuffer(int width, int height) {
+    constexpr size_t kKept = 3;  // coarse + final + one more; older ones are freed
+    for (size_t i = 0; i < m_fbos.size(); ++i)
+        if (m_fbos[i]->width() == width && m_fbos[i]->height() == height) {
+            std::rotate(m_fbos.begin(), m_fbos.begin() + long(i), m_fbos.begin() + long(i) + 1);
+            return *m_fbos.front();
+        }
+    m_fbos.insert(m_fbos.begin(), std::make_unique<gl::Framebuffer>(width, height));
+    if (m_fbos.size() > kKept) m_fbos.pop_back();
+    return *m_fbos.front();
 }
 
 ImageF Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out) {

@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace hilite::render {
 
@@ -38,7 +39,10 @@ private:
     gl::Context& m_context;
     std::string m_shaderDir;
     std::map<std::string, std::unique_ptr<gl::Program>> m_programs;
-    std::unique_ptr<gl::Framebuffer> m_fbo;
+    /// Framebuffers by size, most recent first: automatic framing alternates a coarse and a final size,
+    /// and reallocating a 512x512 float target per render costs more than drawing it.
+    std::vector<std::unique_ptr<gl::Framebuffer>> m_fbos;
+    gl::Framebuffer& framebuffer(int width, int height);
     unsigned int m_vao = 0, m_vbo = 0;
 };
 
