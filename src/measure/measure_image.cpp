@@ -63,7 +63,7 @@ Survey survey(const Pixels& px) {
             for (int x = r * kRun; x < r * kRun + px.runLength(r); ++x) {
                 const float* q = px.at(x, y);
                 const bool visible = q[3] > 0.f;
-                const float L = visible ? std::max(q[0], 0.f) : -1.f;  // (a NaN L counts as 0)
+                const float L = visible ? std::max(0.f, q[0]) : -1.f;  // (a negative or NaN L counts as 0)
                 px.dense[px.index(x, y)] = L;
                 m = std::max(m, L);
                 lo = std::min(lo, visible ? L : lo);
@@ -101,7 +101,7 @@ struct Threshold {
     }
 };
 
-/// Runs with an L >= T, grown by `reach` runs in every direction.
+/// The seed runs grown by `reach` runs in every direction.
 std::vector<char> runsNear(const Pixels& px, const std::vector<char>& seed, int reach) {
     const int runs = px.runs();
     std::vector<char> out(seed.size(), 0);
@@ -181,7 +181,7 @@ double slope(const Pixels& px, int x, int y, int dx, int dy) {
 double contourFraction(const Pixels& px, int x, int y, double T) {
     const double gx = slope(px, x, y, 1, 0), gy = slope(px, x, y, 0, 1), g = std::sqrt(gx * gx + gy * gy);
     const double L = px.L(x, y);
-    if (!(g > 0.0)) return L >= T ? 1.0 : 0.0;  // flat: no line to fit, fall back to the centre
+    if (!(g > 0.0)) return L >= T ? 1.0 : 0.0;     // flat: no line to fit, fall back to the centre
     return coverage((L - T) / g, gx / g, gy / g);  // inside: g.(p - c) >= T - L, i.e. (-g/|g|).(p - c) <= d
 }
 
@@ -192,14 +192,7 @@ inline int bitCount(uint32_t m) {
     return int((((m + (m >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24);
 }
 
-/// What pass 2 gathers: weighted sums about a shift point (the peak's (u, v), against cancellation).
-struct RegionSums {
-    double s0 = 0, su = 0, sv = 0, suu = 0, suv = 0, svv = 0;
-    long pixels = 0;
-    bool touchesBorder = false, touchesSky = false;
-};
-
-/// Moment sums of some pixels, about a shift point.
+/// Moment sums of some pixels, about a shift point (the peak's (u, v), against cancellation).
 struct Sums {
     double s0 = 0, su = 0, sv = 0, suu = 0, suv = 0, svv = 0;
 
@@ -212,12 +205,28 @@ struct Sums {
         suv += wu * dv;
         svv += wv * dv;
     }
+    void add(const Sums& o) {
+        s0 += o.s0;
+        su += o.su;
+        sv += o.sv;
+        suu += o.suu;
+        suv += o.suv;
+        svv += o.svv;
+    }
+};
+
+/// What pass 2 gathers.
+struct RegionSums {
+    Sums m;
+    long pixels = 0;
+    bool touchesBorder = false, touchesSky = false;
 };
 
 /// Adds the pixels of `bits` (of the run starting at x0 in row y), each with weight f(x) * w.
 template <typename Fraction>
-void accumulate(const Pixels& px, int x0, int y, uint32_t bits, dvec2 shift, Fraction f, RegionSums& r) {
-    // Two sets of sums, alternating: the adds are latency-bound chains, so this halves the time.
+void accumulate(const Pixels& px, int x0, int y, uint32_t bits, dvec2 shift, Fraction f, Sums& sums) {
+    // Two sets of sums, alternating: each sum is a chain of dependent adds, so this halves the time.
+    // (__builtin_ctz: gcc and clang; bits != 0 here.)
     Sums a, b;
     while (bits != 0) {
         const int xa = x0 + __builtin_ctz(bits);
@@ -228,12 +237,8 @@ void accumulate(const Pixels& px, int x0, int y, uint32_t bits, dvec2 shift, Fra
         bits &= bits - 1;
         b.add(px.at(xb, y), f(xb), shift);
     }
-    r.s0 += a.s0 + b.s0;
-    r.su += a.su + b.su;
-    r.sv += a.sv + b.sv;
-    r.suu += a.suu + b.suu;
-    r.suv += a.suv + b.suv;
-    r.svv += a.svv + b.svv;
+    sums.add(a);
+    sums.add(b);
 }
 
 /// The masks of the 4-neighbours of every pixel of a run, and which neighbours are inside the image.
@@ -246,7 +251,7 @@ Around around(const Pixels& px, const std::vector<RunMask>& masks, int y, int r)
     const int runs = px.runs(), n = px.runLength(r), x0 = r * kRun;
     auto get = [&](int yy, int rr) {
         return (yy < 0 || yy >= px.height || rr < 0 || rr >= runs) ? RunMask{}
-                                                                     : masks[size_t(yy) * size_t(runs) + size_t(rr)];
+                                                                   : masks[size_t(yy) * size_t(runs) + size_t(rr)];
     };
     const RunMask c = get(y, r), left = get(y, r - 1), right = get(y, r + 1), down = get(y - 1, r), up = get(y + 1, r);
     Around a;
@@ -270,17 +275,19 @@ void scanRun(const Pixels& px, const std::vector<RunMask>& masks, int y, int r, 
     const Around a = around(px, masks, y, r);
     const int x0 = r * kRun, n = px.runLength(r);
     const uint32_t sky = (a.insideL & ~a.visL) | (a.insideR & ~a.visR) | (a.insideD & ~a.visD) | (a.insideU & ~a.visU);
-    const uint32_t rim = (y == 0 || y == px.height - 1) ? ~0u : (x0 == 0 ? 1u : 0u) | (x0 + n == px.width ? 1u << (n - 1) : 0u);
+    const uint32_t rim =
+        (y == 0 || y == px.height - 1) ? ~0u : (x0 == 0 ? 1u : 0u) | (x0 + n == px.width ? 1u << (n - 1) : 0u);
     sums.pixels += bitCount(c.in);
     sums.touchesSky = sums.touchesSky || (c.in & sky) != 0;
     sums.touchesBorder = sums.touchesBorder || (c.in & rim) != 0;
     // Contour: visible, with a visible 4-neighbour on the other side of T.
-    const uint32_t contour =
-        subpixel ? c.vis & ((a.visL & (a.inL ^ c.in)) | (a.visR & (a.inR ^ c.in)) | (a.visD & (a.inD ^ c.in)) |
-                            (a.visU & (a.inU ^ c.in)))
-                 : 0u;
-    accumulate(px, x0, y, c.in & ~contour, shift, [](int) { return 1.0; }, sums);
-    if (contour) accumulate(px, x0, y, contour, shift, [&](int x) { return contourFraction(px, x, y, th.T); }, sums);
+    const uint32_t contour = subpixel ? c.vis & ((a.visL & (a.inL ^ c.in)) | (a.visR & (a.inR ^ c.in)) |
+                                                 (a.visD & (a.inD ^ c.in)) | (a.visU & (a.inU ^ c.in)))
+                                      : 0u;
+    const auto whole = [](int) { return 1.0; };
+    const auto covered = [&](int x) { return contourFraction(px, x, y, th.T); };
+    accumulate(px, x0, y, c.in & ~contour, shift, whole, sums.m);
+    if (contour) accumulate(px, x0, y, contour, shift, covered, sums.m);
 }
 
 /// Pass 2 over the runs that hold an L >= T (and, with sub-pixel coverage, their neighbours).
@@ -298,7 +305,7 @@ RegionSums scanRegion(const Pixels& px, const Survey& s, const Threshold& th, bo
     return sums;
 }
 
-AreaMoments toMoments(const RegionSums& r, dvec2 shift) {
+AreaMoments toMoments(const Sums& r, dvec2 shift) {
     AreaMoments m;
     m.area = r.s0;
     const double du = r.su / r.s0, dv = r.sv / r.s0;
@@ -374,7 +381,7 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     const Threshold th(opt.threshold * double(sv.peak));
     const RegionSums sums = scanRegion(px, sv, th, opt.subpixel);  // never empty: the peak pixel is in it
     const dvec2 peakUV = px.uv(sv.x, sv.y);
-    setEllipse(s, toMoments(sums, peakUV));
+    setEllipse(s, toMoments(sums.m, peakUV));
     s.peak = sv.peak;
     s.peak_u_deg = rad2deg(peakUV.x);
     s.peak_v_deg = rad2deg(peakUV.y);
@@ -382,7 +389,7 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     setWidths(s, px, sv.x, sv.y, th.T);
 
     // Pixel pitch: sqrt of the mean (u,v) area of the region's pixels (their weights sum to about s0).
-    const double pitch = std::sqrt(sums.s0 / double(sums.pixels));
+    const double pitch = std::sqrt(sums.m.s0 / double(sums.pixels));
     s.minor_pixels = 2.0 * deg2rad(s.minor_deg) / pitch;
     if (sums.touchesBorder) s.flags.push_back(Flag::Clipped);
     if (sums.touchesSky) s.flags.push_back(Flag::HorizonCut);

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/math.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -16,10 +17,11 @@ namespace hilite::measure {
 
 namespace {
 
-constexpr int kCoarseGrid = 64;        ///< coarse peak search: kCoarseGrid^2 points over the search disc
-constexpr double kPeakStep = 1e-12;    ///< pattern search stops at this step (rad): L is then flat to ~1e-20
-constexpr int kContourAngles = 2048;   ///< a multiple of 4, so that phi = 0, pi/2, pi, 3pi/2 are samples
-constexpr double kRadiusTol = 1e-13;   ///< bisection tolerance on r(phi) (rad), ~1e-11 of a 1 deg radius
+constexpr int kCoarseGrid = 64;  ///< coarse peak search: kCoarseGrid^2 points over the search disc
+constexpr double kPeakStep =
+    1e-12;  ///< pattern search stops at this step (rad); rounding noise in L hides the peak long before
+constexpr int kContourAngles = 2048;  ///< a multiple of 4, so that phi = 0, pi/2, pi, 3pi/2 are samples
+constexpr double kRadiusTol = 1e-13;  ///< bisection tolerance on r(phi) (rad), ~1e-11 of a 1 deg radius
 
 struct Candidate {
     dvec2 q{0.0};
@@ -77,8 +79,14 @@ struct Ray {
     double T;
 
     dvec2 at(double r) const { return p + r * dir; }
-    bool visible(double r) const { dvec2 q = at(r); return f.visible(q.x, q.y); }
-    bool in(double r) const { dvec2 q = at(r); return f.visible(q.x, q.y) && f.lobe(q.x, q.y) >= T; }
+    bool visible(double r) const {
+        dvec2 q = at(r);
+        return f.visible(q.x, q.y);
+    }
+    bool in(double r) const {
+        dvec2 q = at(r);
+        return f.visible(q.x, q.y) && f.lobe(q.x, q.y) >= T;
+    }
 };
 
 struct Boundary {
@@ -86,21 +94,21 @@ struct Boundary {
     bool horizon = false;  ///< the ray leaves the region through the horizon, not the threshold
 };
 
-/// Where the ray leaves the region, bracketed by geometric steps from the guess r0 > 0, then bisected.
-/// The region is assumed star-shaped about the peak: the first way out found is the boundary. This holds
-/// for the single-lobe BRDFs measured here (L decreases along every ray from the peak); a region with
-/// holes or arms would get the contour of its star-shaped kernel-ish part, silently.
+/// Where the ray leaves the region: bracketed by steps from the guess r0 > 0 (the previous ray's radius;
+/// growing steps, x1.1 then squared each time, so a far or a zero radius costs a few steps), then bisected.
+/// The region is assumed star-shaped about the peak, so the first way out is the boundary. That holds for
+/// the single-lobe BRDFs measured here (L falls along every ray from the peak) and is not checked: a region
+/// with a notch or an arm would get the contour of the part seen from the peak, silently.
 Boundary findBoundary(const Ray& ray, double r0) {
-    constexpr double kStep = 1.1, kMaxRadius = 2.0 * kPi, kMinRadius = 1e-15;
-    double lo = 0.0, hi = r0;
+    constexpr double kMaxRadius = 2.0 * kPi, kMinRadius = 1e-15;
+    double lo = 0.0, hi = r0, step = 1.1;
     if (ray.in(r0)) {
-        lo = r0;
-        for (hi = lo * kStep; ray.in(hi); hi *= kStep) {
+        for (lo = r0, hi = r0 * step; ray.in(hi); step = std::min(step * step, 1e3), hi = lo * step) {
             lo = hi;
             if (hi > kMaxRadius) return {hi, false};  // no way out: cannot happen above a horizon
         }
     } else {
-        for (lo = hi / kStep; lo > kMinRadius && !ray.in(lo); lo /= kStep) hi = lo;
+        for (lo = r0 / step; lo > kMinRadius && !ray.in(lo); step = std::min(step * step, 1e3), lo = hi / step) hi = lo;
         if (lo <= kMinRadius) lo = 0.0;  // the peak itself sits on the boundary (a horizon peak)
     }
     for (int i = 0; i < 200 && hi - lo > kRadiusTol; ++i) {
@@ -139,8 +147,7 @@ AreaMoments polarMoments(const std::vector<double>& r, dvec2 p) {
 
 }  // namespace
 
-Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u,
-                       double hint_v) {
+Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u, double hint_v) {
     validate(opt);
     if (!f.lobe || !f.visible) throw InputError("measureReference: lobe and visible must both be set");
     if (!(searchRadius > 0.0)) throw InputError("measureReference: searchRadius must be > 0");

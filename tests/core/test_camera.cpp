@@ -91,5 +91,8 @@ TEST_CASE("PinholeCamera::photo") {
         const dvec3 centre = cam.ray(40.0, 30.0);
         CHECK(glm::length(cam.position + 5.0 * centre) < 1e-12);
     }
-    SUBCASE("world up is image up") { CHECK(cam.up.z > 0.0); CHECK(std::abs(cam.right.z) < 1e-15); }
+    SUBCASE("world up is image up") {
+        CHECK(cam.up.z > 0.0);
+        CHECK(std::abs(cam.right.z) < 1e-15);
+    }
 }

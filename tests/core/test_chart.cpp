@@ -60,7 +60,8 @@ TEST_CASE("MirrorChart::direction") {
             for (double v : {-1.1, 0.0, 0.2, 3e-7}) {
                 const dvec3 we = chart.direction(u, v);
                 CHECK(glm::length(we) == doctest::Approx(1.0).epsilon(1e-15));
-                CHECK(std::acos(std::min(1.0, glm::dot(we, chart.wr()))) == doctest::Approx(std::hypot(u, v)).epsilon(1e-7));
+                CHECK(std::acos(std::min(1.0, glm::dot(we, chart.wr()))) ==
+                      doctest::Approx(std::hypot(u, v)).epsilon(1e-7));
             }
         }
     }
@@ -97,7 +98,8 @@ TEST_CASE("MirrorChart::areaPerSolidAngle") {
                 const dvec3 we = chart.direction(u, v);
                 const double rho = std::hypot(u, v);
                 CHECK(chart.areaPerSolidAngle(we) == doctest::Approx(rho / std::sin(rho)).epsilon(1e-12));
-                CHECK(chart.areaPerSolidAngle(we) == doctest::Approx(numericAreaPerSolidAngle(chart, u, v)).epsilon(1e-8));
+                CHECK(chart.areaPerSolidAngle(we) ==
+                      doctest::Approx(numericAreaPerSolidAngle(chart, u, v)).epsilon(1e-8));
             }
         }
     }
