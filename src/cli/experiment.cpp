@@ -47,7 +47,11 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file, const CLI::Ap
             if (auto v = x.value<double>()) r.push_back(*v);
         if (r.size() != 3 || !(r[2] > 0) || r[1] < r[0])
             throw InputError(line(file, *range) + ": sweep " + axis.key + ": range = [start, stop, step], step > 0");
-        const long n = std::lround(std::floor((r[1] - r[0]) / r[2] + 1e-9));
+        const double count = std::floor((r[1] - r[0]) / r[2] + 1e-9) + 1;
+        if (!std::isfinite(count) || count > double(kMaxConfigurations))
+            throw InputError(line(file, *range) + ": sweep " + axis.key + ": range gives more than " +
+                             std::to_string(kMaxConfigurations) + " values");
+        const long n = long(count) - 1;
         for (long i = 0; i <= n; ++i) {
             const toml::value<double> v(r[0] + double(i) * r[2]);
             out.push_back(sceneArg(file, axis.key, v, app));
@@ -88,10 +92,12 @@ std::string findExperiment(const std::string& name) {
     throw InputError("run: no experiment '" + name + "' (give a file, or a name from experiments/)");
 }
 
-Experiment loadExperiment(const std::string& path) {
+Experiment loadExperiment(const std::string& path) { return parseExperiment(readText(path), path); }
+
+Experiment parseExperiment(const std::string& text, const std::string& path) {
     Experiment e;
     e.path = path;
-    e.text = readText(path);
+    e.text = text;
     toml::table doc;
     try {
         doc = toml::parse(e.text, path);
@@ -102,12 +108,13 @@ Experiment loadExperiment(const std::string& path) {
     for (const auto& [k, v] : doc) {
         static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
                                                          "contact_sheet", "summary"};
-        if (std::find(allowed.begin(), allowed.end(), std::string(k.str())) == allowed.end())
-            throw InputError(line(path, v) + ": " + std::string(k.str()) + ": unknown table" +
-                             [&] {
-                                 const std::string h = didYouMean(std::string(k.str()), allowed);
-                                 return h.empty() ? std::string() : " (did you mean '" + h + "'?)";
-                             }() + "; allowed: experiment, scene, sweep, match, plot, contact_sheet, summary");
+        const std::string table(k.str());
+        if (std::find(allowed.begin(), allowed.end(), table) == allowed.end()) {
+            const std::string hint = didYouMean(table, allowed);
+            throw InputError(line(path, v) + ": " + table + ": unknown table" +
+                             (hint.empty() ? std::string() : " (did you mean '" + hint + "'?)") +
+                             "; allowed: experiment, scene, sweep, match, plot, contact_sheet, summary");
+        }
     }
     const std::string stem = path.substr(path.rfind('/') + 1);
     e.name = doc["experiment"]["name"].value_or(stem.substr(0, stem.rfind('.')));
@@ -174,6 +181,11 @@ std::vector<Configuration> Experiment::configurations() const {
         }
         axisArgs.push_back(out);
     }
+    double total = 1;
+    for (const auto& a : axisArgs) total *= double(a.size());
+    if (total > double(kMaxConfigurations))
+        throw InputError(path + ": the sweep axes give " + std::to_string(long(total)) + " configurations (at most " +
+                         std::to_string(kMaxConfigurations) + ")");
     std::vector<Configuration> configs;
     std::vector<size_t> idx(axes.size(), 0);
     for (long index = 0;; ++index) {

@@ -48,6 +48,10 @@ struct Experiment {
 /// A path, or the name of a file shipped in experiments/ (found beside the executable like the shaders).
 std::string findExperiment(const std::string& nameOrPath);
 Experiment loadExperiment(const std::string& path);
+/// The same from text; `name` stands for the file in messages.
+Experiment parseExperiment(const std::string& text, const std::string& name);
+/// A sweep larger than this is refused: its rows would not fit a results file anyone reads.
+constexpr size_t kMaxConfigurations = 1000000;
 void writeExperimentCopy(const Experiment& e, const std::string& dir);
 
 class ExperimentRunner {

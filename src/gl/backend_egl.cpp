@@ -75,7 +75,7 @@ public:
     ~EGLBackend() override {
         g_egl.makeCurrent(m_dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         g_egl.destroyContext(m_dpy, m_ctx);
-        g_egl.terminate(m_dpy);
+        // The display is not terminated: it lives for the process (see openDisplay).
     }
     void makeCurrent() override {
         if (!g_egl.makeCurrent(m_dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, m_ctx))
@@ -96,7 +96,12 @@ std::string eglErrorText() {
     }();
 }
 
+/// The surfaceless display, initialised once and kept for the process: eglTerminate unloads the
+/// driver, and a terminate/initialise per context both costs a driver load and leaves the driver's
+/// allocations unreachable (LeakSanitizer reports them against an unloaded module it cannot name).
 EGLDisplay openDisplay(std::string& why) {
+    static EGLDisplay display = EGL_NO_DISPLAY;
+    if (display != EGL_NO_DISPLAY) return display;
     const char* clientExt = g_egl.queryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!clientExt || !std::strstr(clientExt, "EGL_MESA_platform_surfaceless") || !g_egl.getPlatformDisplay) {
         why = "EGL has no EGL_MESA_platform_surfaceless (install libegl-mesa0)";
@@ -108,7 +113,7 @@ EGLDisplay openDisplay(std::string& why) {
         why = "eglInitialize on the surfaceless platform failed (" + eglErrorText() + ")";
         return EGL_NO_DISPLAY;
     }
-    return dpy;
+    return display = dpy;
 }
 
 }  // namespace
@@ -119,7 +124,6 @@ std::unique_ptr<BackendImpl> createEGLBackend(std::string& why) {
     if (dpy == EGL_NO_DISPLAY) return nullptr;
     if (!g_egl.bindApi(EGL_OPENGL_API)) {
         why = "eglBindAPI(EGL_OPENGL_API) failed";
-        g_egl.terminate(dpy);
         return nullptr;
     }
     // EGL_SURFACE_TYPE defaults to EGL_WINDOW_BIT, which the surfaceless platform has none of.
@@ -128,7 +132,6 @@ std::unique_ptr<BackendImpl> createEGLBackend(std::string& why) {
     EGLint count = 0;
     if (!g_egl.chooseConfig(dpy, configAttribs, &config, 1, &count) || count < 1) {
         why = "no EGL config with desktop OpenGL";
-        g_egl.terminate(dpy);
         return nullptr;
     }
     for (EGLint minorVersion : {45, 33}) {
@@ -139,7 +142,6 @@ std::unique_ptr<BackendImpl> createEGLBackend(std::string& why) {
         if (ctx != EGL_NO_CONTEXT) return std::make_unique<EGLBackend>(dpy, ctx);
     }
     why = "eglCreateContext failed for GL 4.5 and 3.3 core (" + eglErrorText() + ")";
-    g_egl.terminate(dpy);
     return nullptr;
 }
 

@@ -54,8 +54,8 @@ void set3(const gl::Program& p, const char* name, const dvec3& v) {
 
 }  // namespace
 
-Renderer::Renderer(gl::Context& context, std::string shaderDir)
-    : m_context(context), m_shaderDir(shaderDir.empty() ? shaderDirectory() : std::move(shaderDir)) {
+Renderer::Renderer(gl::Context& /*current*/, std::string shaderDir)
+    : m_shaderDir(shaderDir.empty() ? shaderDirectory() : std::move(shaderDir)) {
     glGenVertexArrays(1, &m_vao);
     glBindVertexArray(m_vao);
     glGenBuffers(1, &m_vbo);

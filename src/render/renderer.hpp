@@ -19,7 +19,7 @@ namespace hilite::render {
 
 class Renderer {
 public:
-    /// `shaderDir` empty: found with shaderDirectory().
+    /// Needs `context` current while it lives. `shaderDir` empty: found with shaderDirectory().
     explicit Renderer(gl::Context& context, std::string shaderDir = "");
     ~Renderer();
 
@@ -36,7 +36,6 @@ public:
 private:
     void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) const;
 
-    gl::Context& m_context;
     std::string m_shaderDir;
     std::map<std::string, std::unique_ptr<gl::Program>> m_programs;
     /// Framebuffers by size, most recent first: automatic framing alternates a coarse and a final size,

@@ -20,8 +20,9 @@ struct Result {
     std::string out;  ///< stdout and stderr
 };
 
-Result hilite(const std::string& args) {
-    const std::string cmd = std::string(HILITE_EXE) + " " + args + " 2>&1";
+/// Runs hilite; the output holds stdout, and stderr too unless `stdoutOnly`.
+Result hilite(const std::string& args, bool stdoutOnly = false) {
+    const std::string cmd = std::string(HILITE_EXE) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
     Result r;
     FILE* p = popen(cmd.c_str(), "r");
     std::array<char, 4096> buf{};
@@ -90,7 +91,7 @@ TEST_CASE("cli::render writes PNG and PFM") {
 }
 
 TEST_CASE("cli::measure JSON lines carry the contract's fields") {
-    const auto r = hilite("measure --model ggx --roughness 0.1 --incidence 0:60:30 --size 128 --json");
+    const auto r = hilite("measure --model ggx --roughness 0.1 --incidence 0:60:30 --size 128 --json", true);
     REQUIRE(r.code == 0);
     CHECK(lines(r.out) == 3);
     for (const char* field : {"\"model\"", "\"incidence_deg\"", "\"aspect\"", "\"eccentricity\"", "\"major_deg\"",
