@@ -1,10 +1,12 @@
 // Reflectance terms: the GLSL twin of src/brdf/terms.hpp (same names, argument order and split).
 // The program assembler (src/render/shader_source.cpp) copies only the blocks a scene names, so a
 // program contains exactly the terms it runs. A block is "//@block NAME [needs OTHER ...]" .. "//@end".
-// Arguments are the clamped scalars computed once per pixel: NoH = n.h, sin2h = |n x h|^2, VoH = wo.h.
+// Arguments are the clamped scalars computed once per pixel: NoH = n.h, sin2h = |n x h|^2, VoH = wo.h,
+// and for the anisotropic terms HoX, HoY = h in the tangent frame.
 
 // ---- Config ----
-// (injected after #version by the assembler: HILITE_OUTPUT_MEASURE or HILITE_OUTPUT_COLOR)
+// (injected after #version by the assembler: HILITE_OUTPUT_MEASURE or HILITE_OUTPUT_COLOR, and for the
+// spectral Fresnel HILITE_SPECTRAL_SAMPLES, the length of its uniform arrays)
 
 // ---- Terms ----
 
@@ -31,6 +33,13 @@ float powCosStable(float oneMinusCos, float n) {
 // Normalized Phong reflection lobe: f = (n+2)/(2 pi) cos^n(alpha_r). Phong 1975; normalization Lewis 1994.
 float Phong_Normalized(float oneMinusCosR, float n) {
     return (n + 2.0) * (0.5 * INV_PI) * powCosStable(oneMinusCosR, n);
+}
+//@end
+
+//@block Phong_Classic needs common
+// Classic (unnormalized) Phong lobe as a BRDF: f = cos^n(alpha_r), k_s = 1. Phong 1975. Not energy-conserving.
+float Phong_Classic(float oneMinusCosR, float n) {
+    return powCosStable(oneMinusCosR, n);
 }
 //@end
 
@@ -61,12 +70,106 @@ float D_GGX(float NoH, float sin2h, float alpha) {
 }
 //@end
 
+//@block D_Gaussian needs common
+// theta from (sin, cos) by three half-angle steps, tan(theta/8) <= tan(pi/16) = 0.199, and the atan series
+// to t^11 (truncation < 3e-10 relative). GLSL's atan(y, x) is good to ~1e-6 rad absolute on llvmpipe, i.e.
+// 2e-5 relative at theta = 0.05, which exp(-(theta/m)^2) amplifies to 3e-4 for m = 0.02. c > 0.
+float angleFromSinCos(float s, float c) {
+    float t = s / (1.0 + c);            // tan(theta / 2)
+    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 4)
+    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 8)
+    float t2 = t * t;
+    return 8.0 * t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 + t2 * (-1.0 / 7.0 + t2 * (1.0 / 9.0 - t2 / 11.0)))));
+}
+// Gaussian NDF in the angle: D(h) = k_G exp(-(theta_h / m)^2), k_G computed on the CPU (no closed form).
+// Cook & Torrance 1982.
+float D_Gaussian(float NoH, float sin2h, float m, float kG) {
+    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    float t = angleFromSinCos(sqrt(sin2h), NoH) / m;
+    return kG * exp(-t * t);
+}
+//@end
+
+//@block D_BeckmannAniso needs common
+// Anisotropic Beckmann: D(h) = exp(-((hx/ax)^2 + (hy/ay)^2) / hz^2) / (pi ax ay hz^4), h in the tangent
+// frame. Heitz 2014 "Understanding the masking-shadowing function" (the stretched Beckmann).
+float D_BeckmannAniso(float HoX, float HoY, float NoH, float ax, float ay) {
+    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    float cos2 = NoH * NoH, x = HoX / ax, y = HoY / ay;
+    return exp(-(x * x + y * y) / cos2) / (PI * ax * ay * cos2 * cos2);
+}
+//@end
+
+//@block D_GGXAniso needs common
+// Anisotropic GGX: D(h) = 1 / (pi ax ay ((hx/ax)^2 + (hy/ay)^2 + hz^2)^2). Burley 2012; Heitz 2014.
+float D_GGXAniso(float HoX, float HoY, float NoH, float ax, float ay) {
+    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    float x = HoX / ax, y = HoY / ay;
+    float d = x * x + y * y + NoH * NoH;
+    return 1.0 / (PI * ax * ay * d * d);
+}
+//@end
+
 //@block F_Schlick
 // Schlick's Fresnel approximation: F = F0 + (1 - F0)(1 - cos)^5. Schlick 1994.
 vec3 F_Schlick(vec3 f0, float VoH) {
     float c = clamp(1.0 - VoH, 0.0, 1.0);
     float c2 = c * c;
     return f0 + (vec3(1.0) - f0) * (c2 * c2 * c);
+}
+//@end
+
+//@block F_Dielectric
+// Exact dielectric Fresnel, (Rs, Rp): Rs = ((ci - eta ct) / (ci + eta ct))^2, Rp = ((eta ci - ct) /
+// (eta ci + ct))^2, eta = n_t / n_i, sin(theta_t) = sin(theta_i) / eta. Born & Wolf sec. 1.5.2.
+// For eta < 1, F has an infinite slope at the critical angle: there a float rounding of cos (6e-8) moves
+// ct by sqrt(6e-8) = 2.4e-4, so within ~1e-3 rad of that angle GL and the double twin differ by up to
+// 4e-4 relative (measured); everywhere else by < 1e-5.
+vec2 F_DielectricSP(float cosTheta_i, float eta) {
+    float ci = clamp(cosTheta_i, 0.0, 1.0);
+    float sin2Theta_t = (1.0 - ci * ci) / (eta * eta);
+    if (sin2Theta_t >= 1.0) return vec2(1.0);  // total internal reflection (eta < 1 beyond the critical angle)
+    float ct = sqrt(1.0 - sin2Theta_t);
+    float rs = (ci - eta * ct) / (ci + eta * ct);
+    float rp = (eta * ci - ct) / (eta * ci + ct);
+    return vec2(rs * rs, rp * rp);
+}
+// Exact unpolarized dielectric Fresnel: F = (Rs + Rp) / 2.
+float F_Dielectric(float cosTheta_i, float eta) {
+    vec2 r = F_DielectricSP(cosTheta_i, eta);
+    return 0.5 * (r.x + r.y);
+}
+//@end
+
+//@block F_Conductor
+// Exact conductor Fresnel for eta + i k, (Rs, Rp) in real arithmetic (Born & Wolf sec. 14.2; Rp without
+// tan, finite at grazing, Lagarde 2013): a^2 + b^2 = sqrt((eta^2 - k^2 - sin^2)^2 + 4 eta^2 k^2),
+// a^2 = (a^2 + b^2 + eta^2 - k^2 - sin^2) / 2, Rs = (a^2+b^2 - 2a cos + cos^2) / (a^2+b^2 + 2a cos + cos^2),
+// Rp = Rs (cos^2 (a^2+b^2) - 2a cos sin^2 + sin^4) / (cos^2 (a^2+b^2) + 2a cos sin^2 + sin^4).
+vec2 F_ConductorSP(float cosTheta_i, float eta, float k) {
+    float c = clamp(cosTheta_i, 0.0, 1.0), c2 = c * c, s2 = 1.0 - c2;
+    float t0 = eta * eta - k * k - s2;
+    float a2b2 = sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
+    float a = sqrt(max(0.0, 0.5 * (a2b2 + t0)));
+    float t1 = a2b2 + c2, t2 = 2.0 * a * c;
+    float Rs = (t1 - t2) / (t1 + t2);
+    float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+    return vec2(Rs, Rs * (t3 - t4) / (t3 + t4));
+}
+// Exact unpolarized conductor Fresnel: F = (Rs + Rp) / 2.
+float F_Conductor(float cosTheta_i, float eta, float k) {
+    vec2 r = F_ConductorSP(cosTheta_i, eta, k);
+    return 0.5 * (r.x + r.y);
+}
+//@end
+
+//@block F_Spectral needs F_Conductor
+// Spectral Fresnel of a measured metal: F = sum_i w_i F_Conductor(cos, eta_i, k_i), w_i the linear sRGB
+// weights of CIE 1931 under D65 per wavelength sample (each channel sums to 1; see src/brdf/spectral.hpp).
+vec3 F_Spectral(float cosTheta_i, vec2 etaK[HILITE_SPECTRAL_SAMPLES], vec3 weight[HILITE_SPECTRAL_SAMPLES]) {
+    vec3 f = vec3(0.0);
+    for (int i = 0; i < HILITE_SPECTRAL_SAMPLES; ++i) f += weight[i] * F_Conductor(cosTheta_i, etaK[i].x, etaK[i].y);
+    return f;
 }
 //@end
 
@@ -79,15 +182,45 @@ float Lambda_GGX(float cosTheta, float alpha) {
 }
 //@end
 
-//@block Lambda_Beckmann
-// Smith Lambda for Beckmann, Walter et al. 2007 rational approximation (< 0.35% rel. error in G1):
-// a = 1/(m tan theta); Lambda = (1 - 1.259a + 0.396a^2) / (3.535a + 2.181a^2) for a < 1.6, else 0.
+//@block lambdaBeckmannRational
+// The rational fit of Beckmann's Lambda in a = 1/(m tan theta), Walter et al. 2007 (< 0.35% rel. error in
+// G1): Lambda = (1 - 1.259a + 0.396a^2) / (3.535a + 2.181a^2) for a < 1.6, else 0.
+float lambdaBeckmannRational(float a) {
+    if (a >= 1.6) return 0.0;  // the fit's own cut: G1 = 1 within its error
+    return (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
+}
+//@end
+
+//@block Lambda_Beckmann needs lambdaBeckmannRational
+// Smith Lambda for Beckmann by the rational approximation.
 float Lambda_Beckmann(float cosTheta, float m) {
     float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
     if (sinTheta == 0.0) return 0.0;  // normal incidence: no masking
-    float a = cosTheta / (m * sinTheta);
-    if (a >= 1.6) return 0.0;
-    return (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
+    return lambdaBeckmannRational(cosTheta / (m * sinTheta));
+}
+//@end
+
+//@block alphaTan2Aniso
+// alpha^2 tan^2(theta) of the stretched surface seen from w in the tangent frame: (x^2 ax^2 + y^2 ay^2) / z^2,
+// the isotropic Lambda with alpha projected on w's azimuth (Heitz 2014).
+float alphaTan2Aniso(vec3 w, float ax, float ay) {
+    return (w.x * w.x * ax * ax + w.y * w.y * ay * ay) / (w.z * w.z);
+}
+//@end
+
+//@block Lambda_GGXAniso needs alphaTan2Aniso
+// Smith Lambda for anisotropic GGX: (-1 + sqrt(1 + alpha(phi)^2 tan^2(theta))) / 2.
+float Lambda_GGXAniso(vec3 w, float ax, float ay) {
+    return 0.5 * (-1.0 + sqrt(1.0 + alphaTan2Aniso(w, ax, ay)));
+}
+//@end
+
+//@block Lambda_BeckmannAniso needs alphaTan2Aniso lambdaBeckmannRational
+// Smith Lambda for anisotropic Beckmann: the rational fit at a = 1 / (alpha(phi) tan(theta)).
+float Lambda_BeckmannAniso(vec3 w, float ax, float ay) {
+    float a2t2 = alphaTan2Aniso(w, ax, ay);
+    if (a2t2 == 0.0) return 0.0;  // normal incidence: no masking
+    return lambdaBeckmannRational(1.0 / sqrt(a2t2));
 }
 //@end
 
@@ -98,16 +231,52 @@ float G2_SmithCorrelated(float lambdaI, float lambdaO) {
 }
 //@end
 
+//@block G2_SmithSeparable
+// Separable Smith masking-shadowing: G2 = G1(wi) G1(wo) = 1 / ((1 + Lambda(wi)) (1 + Lambda(wo))). Heitz 2014.
+float G2_SmithSeparable(float lambdaI, float lambdaO) {
+    return 1.0 / ((1.0 + lambdaI) * (1.0 + lambdaO));
+}
+//@end
+
+//@block G_CookTorrance
+// Cook-Torrance V-cavity masking-shadowing: G = min(1, 2 NoH NoV / VoH, 2 NoH NoL / VoH). Torrance &
+// Sparrow 1967; Cook & Torrance 1982.
+float G_CookTorrance(float NoH, float NoV, float NoL, float VoH) {
+    if (VoH <= 0.0) return 0.0;  // wi = -wo: no half vector, no reflection
+    return min(1.0, 2.0 * NoH * min(NoV, NoL) / VoH);
+}
+//@end
+
+//@block Fd_Lambert needs common
+// Lambert: f = rho / pi, rho the albedo colour. Lambert 1760 "Photometria".
+vec3 Fd_Lambert(vec3 rho) {
+    return rho * INV_PI;
+}
+//@end
+
+//@block Fd_OrenNayar needs common
+// Oren-Nayar qualitative rough diffuse: f = rho/pi (A + B max(0, cos dphi) sin(alpha) tan(beta)),
+// A = 1 - 0.5 s^2/(s^2 + 0.33), B = 0.45 s^2/(s^2 + 0.09), s = sigma (radians). Oren & Nayar 1994.
+// max(0, cos dphi) sin(alpha) tan(beta) = max(0, LoV - NoL NoV) / max(NoL, NoV): no trig, reciprocal.
+vec3 Fd_OrenNayar(vec3 rho, float sigma, float NoL, float NoV, float LoV) {
+    float s2 = sigma * sigma;
+    float A = 1.0 - 0.5 * s2 / (s2 + 0.33), B = 0.45 * s2 / (s2 + 0.09);
+    float t = max(0.0, LoV - NoL * NoV) / max(NoL, NoV);
+    return rho * (INV_PI * (A + B * t));
+}
+//@end
+
 //@block HalfVector
 // Half vector and its scalars, computed once per pixel. wi = -wo (no half vector) only happens with wo
 // below the horizon, which the caller has already rejected; the guard keeps the division finite anyway.
-struct HalfVector { float NoH; float sin2h; float oneMinusNoH; float VoH; bool valid; };
+struct HalfVector { float NoH; float sin2h; float oneMinusNoH; float VoH; vec3 h; bool valid; };
 HalfVector halfVector(vec3 wi, vec3 wo) {
-    HalfVector hv = HalfVector(0.0, 0.0, 1.0, 0.0, false);
+    HalfVector hv = HalfVector(0.0, 0.0, 1.0, 0.0, vec3(0.0), false);
     vec3 s = wi + wo;
     float len = sqrt(dot(s, s));
     if (len < 1e-6) return hv;  // degenerate: wi = -wo to float precision
     vec3 h = s / len;
+    hv.h = h;
     hv.NoH = h.z;
     hv.sin2h = h.x * h.x + h.y * h.y;                            // |n x h|^2, no 1 - NoH^2 cancellation
     hv.oneMinusNoH = h.z > 0.0 ? hv.sin2h / (1.0 + h.z) : 1.0;  // 1 - cos = sin^2 / (1 + cos)

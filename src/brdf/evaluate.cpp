@@ -1,6 +1,9 @@
 #include "brdf/evaluate.hpp"
 
+#include "brdf/spectral.hpp"
 #include "brdf/terms.hpp"
+
+#include <stdexcept>
 
 namespace hilite::brdf {
 
@@ -8,7 +11,8 @@ namespace {
 
 /// Half vector, NoH, |n x h|^2 and VoH, computed once for a direction pair.
 struct HalfVector {
-    double NoH = 0, sin2h = 0, oneMinusNoH = 0, VoH = 0;
+    double NoH = 0, sin2h = 0, oneMinusNoH = 1, VoH = 0;
+    dvec3 h{0.0};
     bool valid = false;  ///< false when wi = -wo: no half vector exists
 };
 
@@ -17,52 +21,128 @@ HalfVector halfVector(const dvec3& wi, const dvec3& wo) {
     const dvec3 s = wi + wo;
     const double len = glm::length(s);
     if (len < 1e-12) return hv;  // wi = -wo (only possible with wo below the horizon): degenerate
-    const dvec3 h = s / len;
-    hv.NoH = h.z;
-    hv.sin2h = h.x * h.x + h.y * h.y;                     // |n x h|^2, exact where 1 - NoH^2 cancels
+    hv.h = s / len;
+    hv.NoH = hv.h.z;
+    hv.sin2h = hv.h.x * hv.h.x + hv.h.y * hv.h.y;                   // |n x h|^2, exact where 1 - NoH^2 cancels
     hv.oneMinusNoH = hv.NoH > 0 ? hv.sin2h / (1.0 + hv.NoH) : 1.0;  // 1 - cos = sin^2 / (1 + cos)
-    hv.VoH = glm::dot(wo, h);
+    hv.VoH = glm::dot(wo, hv.h);
     hv.valid = true;
     return hv;
 }
 
 double distribution(const Params& p, const HalfVector& hv) {
+    if (p.anisotropic() && allowsAnisotropy(p.model)) {
+        const dvec3 ht = toTangent(p, hv.h);
+        return p.model == Model::GGX ? D_GGXAniso(ht.x, ht.y, hv.NoH, p.alphaX(), p.alphaY())
+                                     : D_BeckmannAniso(ht.x, ht.y, hv.NoH, p.alphaX(), p.alphaY());
+    }
     switch (p.model) {
         case Model::Blinn: return D_BlinnPhong(hv.oneMinusNoH, p.exponent);
         case Model::Beckmann: return D_Beckmann(hv.NoH, hv.sin2h, p.roughness);
         case Model::GGX: return D_GGX(hv.NoH, hv.sin2h, p.roughness);
-        case Model::Phong: break;
+        case Model::Gaussian: return D_Gaussian(hv.NoH, hv.sin2h, p.roughness, gaussianNormalization(p.roughness));
+        case Model::Phong:
+        case Model::PhongClassic:
+        case Model::None: break;
     }
     return 0.0;
 }
 
-double lambda(const Params& p, double cosTheta) {
+/// Smith Lambda of the model. Blinn-Phong and the Gaussian have no closed-form Lambda: they use Beckmann's
+/// (Blinn with m = sqrt(2 / (n + 2)), Walter et al. 2007; the Gaussian with its own m, the two NDFs
+/// agreeing to O(theta^2) near the normal). Good for narrow lobes only: the albedo stays <= 1 for
+/// n >= 100 and m <= 0.1 but reaches 1.35 (blinn n = 1) and 1.06 (gaussian m = 0.7) at grazing
+/// (tests/brdf/test_integrate.cpp reports them).
+double lambda(const Params& p, const dvec3& w) {
+    if (p.anisotropic() && allowsAnisotropy(p.model)) {
+        const dvec3 wt = toTangent(p, w);
+        return p.model == Model::GGX ? Lambda_GGXAniso(wt, p.alphaX(), p.alphaY())
+                                     : Lambda_BeckmannAniso(wt, p.alphaX(), p.alphaY());
+    }
     switch (p.model) {
-        case Model::GGX: return Lambda_GGX(cosTheta, p.roughness);
-        case Model::Beckmann: return Lambda_Beckmann(cosTheta, p.roughness);
-        case Model::Blinn: return Lambda_Beckmann(cosTheta, blinnExponentToBeckmann(p.exponent));
-        case Model::Phong: break;
+        case Model::GGX: return Lambda_GGX(w.z, p.roughness);
+        case Model::Beckmann:
+        case Model::Gaussian: return Lambda_Beckmann(w.z, p.roughness);
+        case Model::Blinn: return Lambda_Beckmann(w.z, blinnExponentToBeckmann(p.exponent));
+        case Model::Phong:
+        case Model::PhongClassic:
+        case Model::None: break;
+    }
+    return 0.0;
+}
+
+/// D G / (4 NoL NoV) with the geometry term of the scene.
+double microfacet(const Params& p, const HalfVector& hv, const dvec3& wi, const dvec3& wo) {
+    const double D = distribution(p, hv), NoL = wi.z, NoV = wo.z;
+    switch (p.geometry) {
+        case Geometry::None: return D / (4.0 * NoL * NoV);  // G = 1
+        case Geometry::Implicit: return D * 0.25;           // G = NoL NoV cancels the denominator
+        case Geometry::CookTorrance: return D * G_CookTorrance(hv.NoH, NoV, NoL, hv.VoH) / (4.0 * NoL * NoV);
+        case Geometry::SmithSeparable: return D * G2_SmithSeparable(lambda(p, wi), lambda(p, wo)) / (4.0 * NoL * NoV);
+        case Geometry::Smith: return D * G2_SmithCorrelated(lambda(p, wi), lambda(p, wo)) / (4.0 * NoL * NoV);
     }
     return 0.0;
 }
 
 }  // namespace
 
-dvec3 evaluate(const Params& p, const dvec3& wi, const dvec3& wo) {
-    const double NoL = wi.z, NoV = wo.z;
-    if (NoL <= 0.0 || NoV <= 0.0) return dvec3(0.0);  // light or viewer below the horizon
-    if (p.model == Model::Phong) {
-        const dvec3 wr(-wi.x, -wi.y, wi.z);
-        const dvec3 d = wo - wr;
-        return dvec3(Phong_Normalized(0.5 * glm::dot(d, d), p.exponent));  // 1 - cos = |wo - wr|^2 / 2
+dvec3 toTangent(const Params& p, const dvec3& w) {
+    double c, s;
+    cosSinDeg(p.tangentAngleDeg, c, s);
+    return {w.x * c + w.y * s, -w.x * s + w.y * c, w.z};
+}
+
+double distribution(const Params& p, const dvec3& h) {
+    HalfVector hv;
+    hv.h = h;
+    hv.NoH = h.z;
+    hv.sin2h = h.x * h.x + h.y * h.y;
+    hv.oneMinusNoH = h.z > 0 ? hv.sin2h / (1.0 + h.z) : 1.0;
+    return distribution(p, hv);
+}
+
+dvec3 fresnel(const Params& p, double cosTheta) {
+    switch (p.fresnel) {
+        case Fresnel::None: return dvec3(1.0);
+        case Fresnel::Schlick: return F_Schlick(p.f0, cosTheta);
+        case Fresnel::Dielectric:
+            return {F_Dielectric(cosTheta, p.eta.x), F_Dielectric(cosTheta, p.eta.y), F_Dielectric(cosTheta, p.eta.z)};
+        case Fresnel::Conductor:
+            return {F_Conductor(cosTheta, p.eta.x, p.k.x), F_Conductor(cosTheta, p.eta.y, p.k.y),
+                    F_Conductor(cosTheta, p.eta.z, p.k.z)};
+        case Fresnel::Spectral:
+            if (!p.spectrum) throw std::logic_error("fresnel spectral without a sampled spectrum (Params::spectrum)");
+            return F_Spectral(cosTheta, *p.spectrum);
+    }
+    return dvec3(1.0);
+}
+
+dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo) {
+    if (wi.z <= 0.0 || wo.z <= 0.0) return dvec3(0.0);  // light or viewer below the horizon
+    if (p.model == Model::None) return dvec3(0.0);
+    if (p.model == Model::Phong || p.model == Model::PhongClassic) {
+        const dvec3 d = wo - dvec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2
+        const double oneMinusCosR = 0.5 * glm::dot(d, d);
+        return dvec3(p.model == Model::Phong ? Phong_Normalized(oneMinusCosR, p.exponent)
+                                             : Phong_Classic(oneMinusCosR, p.exponent));
     }
     const HalfVector hv = halfVector(wi, wo);
     if (!hv.valid) return dvec3(0.0);
-    const double D = distribution(p, hv);
-    const dvec3 F = p.fresnel == Fresnel::Schlick ? F_Schlick(p.f0, hv.VoH) : dvec3(1.0);
-    if (p.geometry == Geometry::Implicit) return D * F * 0.25;  // G = NoL NoV cancels the denominator
-    const double G = G2_SmithCorrelated(lambda(p, NoL), lambda(p, NoV));
-    return D * G * F / (4.0 * NoL * NoV);
+    return microfacet(p, hv, wi, wo) * fresnel(p, hv.VoH);
+}
+
+dvec3 evaluateDiffuse(const Params& p, const dvec3& wi, const dvec3& wo) {
+    if (wi.z <= 0.0 || wo.z <= 0.0) return dvec3(0.0);  // light or viewer below the horizon
+    switch (p.diffuse) {
+        case Diffuse::None: return dvec3(0.0);
+        case Diffuse::Lambert: return Fd_Lambert(p.albedo);
+        case Diffuse::OrenNayar: return Fd_OrenNayar(p.albedo, deg2rad(p.sigmaDeg), wi.z, wo.z, glm::dot(wi, wo));
+    }
+    return dvec3(0.0);
+}
+
+dvec3 evaluate(const Params& p, const dvec3& wi, const dvec3& wo) {
+    return evaluateSpecular(p, wi, wo) + evaluateDiffuse(p, wi, wo);
 }
 
 dvec3 radiance(const Params& p, const dvec3& wi, const dvec3& wo, double irradiance) {

@@ -1,8 +1,41 @@
 #include "brdf/params.hpp"
 
+#include "brdf/spectral.hpp"
+
 #include <ostream>
 
 namespace hilite::brdf {
+
+namespace {
+
+template <class E, size_t N>
+std::optional<E> parseEnum(const std::string& s, const E (&all)[N]) {
+    for (E e : all)
+        if (s == toString(e)) return e;
+    return std::nullopt;
+}
+
+template <class E, size_t N>
+std::vector<std::string> names(const E (&all)[N]) {
+    std::vector<std::string> out;
+    for (E e : all) out.emplace_back(toString(e));
+    return out;
+}
+
+constexpr Model kModels[] = {Model::Phong,    Model::PhongClassic, Model::Blinn, Model::Gaussian,
+                             Model::Beckmann, Model::GGX,          Model::None};
+constexpr Fresnel kFresnels[] = {Fresnel::None, Fresnel::Schlick, Fresnel::Dielectric, Fresnel::Conductor,
+                                 Fresnel::Spectral};
+constexpr Geometry kGeometries[] = {Geometry::None, Geometry::Implicit, Geometry::CookTorrance,
+                                    Geometry::SmithSeparable, Geometry::Smith};
+constexpr Diffuse kDiffuses[] = {Diffuse::None, Diffuse::Lambert, Diffuse::OrenNayar};
+
+void printRgb(std::ostream& os, const char* name, const dvec3& v) {
+    os << " " << name << "=" << v.x;
+    if (v.y != v.x || v.z != v.x) os << "," << v.y << "," << v.z;
+}
+
+}  // namespace
 
 const char* toString(Model m) {
     switch (m) {
@@ -10,44 +43,82 @@ const char* toString(Model m) {
         case Model::Blinn: return "blinn";
         case Model::Beckmann: return "beckmann";
         case Model::GGX: return "ggx";
+        case Model::PhongClassic: return "phong-classic";
+        case Model::Gaussian: return "gaussian";
+        case Model::None: return "none";
     }
     return "?";
 }
-const char* toString(Fresnel f) { return f == Fresnel::None ? "none" : "schlick"; }
-const char* toString(Geometry g) { return g == Geometry::Implicit ? "implicit" : "smith"; }
+const char* toString(Fresnel f) {
+    switch (f) {
+        case Fresnel::None: return "none";
+        case Fresnel::Schlick: return "schlick";
+        case Fresnel::Dielectric: return "dielectric";
+        case Fresnel::Conductor: return "conductor";
+        case Fresnel::Spectral: return "spectral";
+    }
+    return "?";
+}
+const char* toString(Geometry g) {
+    switch (g) {
+        case Geometry::Implicit: return "implicit";
+        case Geometry::Smith: return "smith";
+        case Geometry::None: return "none";
+        case Geometry::CookTorrance: return "cook-torrance";
+        case Geometry::SmithSeparable: return "smith-separable";
+    }
+    return "?";
+}
+const char* toString(Diffuse d) {
+    switch (d) {
+        case Diffuse::None: return "none";
+        case Diffuse::Lambert: return "lambert";
+        case Diffuse::OrenNayar: return "oren-nayar";
+    }
+    return "?";
+}
 
-std::optional<Model> parseModel(const std::string& s) {
-    for (Model m : {Model::Phong, Model::Blinn, Model::Beckmann, Model::GGX})
-        if (s == toString(m)) return m;
-    return std::nullopt;
-}
-std::optional<Fresnel> parseFresnel(const std::string& s) {
-    for (Fresnel f : {Fresnel::None, Fresnel::Schlick})
-        if (s == toString(f)) return f;
-    return std::nullopt;
-}
-std::optional<Geometry> parseGeometry(const std::string& s) {
-    for (Geometry g : {Geometry::Implicit, Geometry::Smith})
-        if (s == toString(g)) return g;
-    return std::nullopt;
-}
-std::vector<std::string> modelNames() { return {"phong", "blinn", "beckmann", "ggx"}; }
+std::optional<Model> parseModel(const std::string& s) { return parseEnum(s, kModels); }
+std::optional<Fresnel> parseFresnel(const std::string& s) { return parseEnum(s, kFresnels); }
+std::optional<Geometry> parseGeometry(const std::string& s) { return parseEnum(s, kGeometries); }
+std::optional<Diffuse> parseDiffuse(const std::string& s) { return parseEnum(s, kDiffuses); }
+std::vector<std::string> modelNames() { return names(kModels); }
+std::vector<std::string> fresnelNames() { return names(kFresnels); }
+std::vector<std::string> geometryNames() { return names(kGeometries); }
+std::vector<std::string> diffuseNames() { return names(kDiffuses); }
 
-bool isMicrofacet(Model m) { return m != Model::Phong; }
-bool usesExponent(Model m) { return m == Model::Phong || m == Model::Blinn; }
+bool isMicrofacet(Model m) {
+    return m == Model::Blinn || m == Model::Beckmann || m == Model::GGX || m == Model::Gaussian;
+}
+bool usesExponent(Model m) { return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn; }
+bool allowsAnisotropy(Model m) { return m == Model::Beckmann || m == Model::GGX; }
 
 std::ostream& operator<<(std::ostream& os, Model m) { return os << toString(m); }
 std::ostream& operator<<(std::ostream& os, Fresnel f) { return os << toString(f); }
 std::ostream& operator<<(std::ostream& os, Geometry g) { return os << toString(g); }
+std::ostream& operator<<(std::ostream& os, Diffuse d) { return os << toString(d); }
 
 std::ostream& operator<<(std::ostream& os, const Params& p) {
     os << "model=" << toString(p.model);
-    if (usesExponent(p.model)) os << " exponent=" << p.exponent;
-    else os << " roughness=" << p.roughness;
+    if (usesExponent(p.model))
+        os << " exponent=" << p.exponent;
+    else if (p.model != Model::None)
+        os << " roughness=" << p.roughness;
+    if (p.anisotropic() && allowsAnisotropy(p.model))
+        os << " roughness-y=" << p.alphaY() << " tangent-angle=" << p.tangentAngleDeg;
     if (isMicrofacet(p.model)) {
         os << " fresnel=" << toString(p.fresnel);
         if (p.fresnel == Fresnel::Schlick) os << " f0=" << p.f0.x << "," << p.f0.y << "," << p.f0.z;
+        if (p.fresnel == Fresnel::Dielectric || p.fresnel == Fresnel::Conductor) printRgb(os, "eta", p.eta);
+        if (p.fresnel == Fresnel::Conductor) printRgb(os, "k", p.k);
+        if (p.fresnel == Fresnel::Spectral && p.spectrum)
+            os << " material=" << p.spectrum->name << " wavelengths=" << p.spectrum->size();
         os << " geometry=" << toString(p.geometry);
+    }
+    if (p.diffuse != Diffuse::None) {
+        os << " diffuse=" << toString(p.diffuse);
+        printRgb(os, "albedo", p.albedo);
+        if (p.diffuse == Diffuse::OrenNayar) os << " sigma=" << p.sigmaDeg;
     }
     return os;
 }

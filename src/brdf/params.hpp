@@ -1,59 +1,103 @@
 #pragma once
 // The BRDF a scene names: model, its parameters, and the terms switched in. Every enum parses from
 // and prints to the CLI's spelling, so every run can log exactly what it evaluated.
+// f = specular (the model's lobe, with its Fresnel and geometry terms) + diffuse (when one is named).
 
 #include "core/math.hpp"
 
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace hilite::brdf {
 
+struct Spectrum;  // brdf/spectral.hpp
+
 /// Specular model: a reflection lobe about the mirror direction, or a microfacet NDF of the half vector.
 enum class Model {
-    Phong,     ///< normalized Phong reflection lobe (n+2)/(2 pi) cos^n(alpha_r)
-    Blinn,     ///< microfacet, Blinn-Phong NDF (n+2)/(2 pi) cos^n(theta_h)
-    Beckmann,  ///< microfacet, Beckmann NDF with rms slope m
-    GGX,       ///< microfacet, Trowbridge-Reitz / GGX NDF with width alpha
+    Phong,         ///< normalized Phong reflection lobe (n+2)/(2 pi) cos^n(alpha_r)
+    Blinn,         ///< microfacet, Blinn-Phong NDF (n+2)/(2 pi) cos^n(theta_h)
+    Beckmann,      ///< microfacet, Beckmann NDF with rms slope m (anisotropic with roughnessY)
+    GGX,           ///< microfacet, Trowbridge-Reitz / GGX NDF with width alpha (anisotropic with roughnessY)
+    PhongClassic,  ///< classic unnormalized Phong lobe cos^n(alpha_r) (k_s = 1): not energy-conserving
+    Gaussian,      ///< microfacet, Gaussian NDF k_G exp(-(theta_h / m)^2) in the angle theta_h
+    None,          ///< no specular lobe: the diffuse term alone
 };
 enum class Fresnel {
-    None,     ///< F = 1
-    Schlick,  ///< F0 + (1 - F0)(1 - cos)^5
+    None,        ///< F = 1
+    Schlick,     ///< F0 + (1 - F0)(1 - cos)^5
+    Dielectric,  ///< exact, unpolarized, real relative index eta per channel (eta < 1: total internal reflection)
+    Conductor,   ///< exact, unpolarized, complex index eta + i k per channel
+    Spectral,    ///< exact conductor per wavelength of a measured metal, integrated to linear sRGB
 };
 enum class Geometry {
-    Implicit,  ///< G = cos(theta_i) cos(theta_o), so f = D F / 4
-    Smith,     ///< height-correlated Smith G2 = 1 / (1 + Lambda(wi) + Lambda(wo))
+    Implicit,        ///< G = cos(theta_i) cos(theta_o), so f = D F / 4
+    Smith,           ///< height-correlated Smith G2 = 1 / (1 + Lambda(wi) + Lambda(wo))
+    None,            ///< G = 1: f = D F / (4 cos_i cos_o), diverges at grazing
+    CookTorrance,    ///< V-cavity G = min(1, 2 NoH NoV / VoH, 2 NoH NoL / VoH)
+    SmithSeparable,  ///< separable Smith G2 = G1(wi) G1(wo), G1 = 1 / (1 + Lambda)
+};
+enum class Diffuse {
+    None,       ///< no diffuse term
+    Lambert,    ///< rho / pi
+    OrenNayar,  ///< Oren-Nayar qualitative rough diffuse, facet slope deviation sigma
 };
 
 const char* toString(Model);
 const char* toString(Fresnel);
 const char* toString(Geometry);
+const char* toString(Diffuse);
 std::optional<Model> parseModel(const std::string&);
 std::optional<Fresnel> parseFresnel(const std::string&);
 std::optional<Geometry> parseGeometry(const std::string&);
+std::optional<Diffuse> parseDiffuse(const std::string&);
 std::vector<std::string> modelNames();
+std::vector<std::string> fresnelNames();
+std::vector<std::string> geometryNames();
+std::vector<std::string> diffuseNames();
 
 bool isMicrofacet(Model m);
-bool usesExponent(Model m);  ///< phong, blinn take an exponent; beckmann, ggx a roughness
+bool usesExponent(Model m);      ///< phong, phong-classic, blinn take an exponent; beckmann, ggx, gaussian a roughness
+bool allowsAnisotropy(Model m);  ///< beckmann, ggx
 
 struct Params {
     Model model = Model::GGX;
-    double exponent = 1000.0;  ///< phong / blinn n
-    double roughness = 0.1;    ///< beckmann m, ggx alpha (the symbols of the formulas, not perceptual)
+    double exponent = 1000.0;  ///< phong / phong-classic / blinn n
+    double roughness =
+        0.1;  ///< beckmann m, ggx alpha, gaussian m in radians (the formulas' symbols); alpha_x if anisotropic
+    std::optional<double> roughnessY;  ///< beckmann / ggx alpha_y: present = anisotropic (even when equal to roughness)
+    double tangentAngleDeg = 0.0;      ///< azimuth of the tangent x axis (the alpha_x direction) from +x
     Fresnel fresnel = Fresnel::None;
-    dvec3 f0{0.04, 0.04, 0.04};
+    dvec3 f0{0.04, 0.04, 0.04};                ///< schlick
+    dvec3 eta{1.5, 1.5, 1.5};                  ///< dielectric / conductor: real part of the relative index n_t / n_i
+    dvec3 k{0.0, 0.0, 0.0};                    ///< conductor: extinction coefficient
+    std::shared_ptr<const Spectrum> spectrum;  ///< spectral: the sampled metal (see brdf/spectral.hpp)
     Geometry geometry = Geometry::Implicit;
+    Diffuse diffuse = Diffuse::None;
+    dvec3 albedo{0.5, 0.5, 0.5};  ///< lambert / oren-nayar rho
+    double sigmaDeg = 20.0;       ///< oren-nayar facet slope standard deviation, degrees
+
+    bool anisotropic() const { return roughnessY.has_value(); }
+    double alphaX() const { return roughness; }
+    double alphaY() const { return roughnessY.value_or(roughness); }
 };
 
 std::ostream& operator<<(std::ostream&, const Params&);
 std::ostream& operator<<(std::ostream&, Model);
 std::ostream& operator<<(std::ostream&, Fresnel);
 std::ostream& operator<<(std::ostream&, Geometry);
+std::ostream& operator<<(std::ostream&, Diffuse);
 
 /// Allowed ranges, checked at the CLI boundary (the error names the flag and the range).
 constexpr double kMinExponent = 0.0, kMaxExponent = 1e8;
 constexpr double kMinRoughness = 1e-4, kMaxRoughness = 10.0;
+/// eta below 0.01 (or eta = k = 0) makes the conductor formula 0/0; measured visible metals have
+/// eta in [0.03, 5] and k below 10, dielectrics eta in [1, 4].
+constexpr double kMinEta = 0.01, kMaxEta = 100.0;
+constexpr double kMinK = 0.0, kMaxK = 100.0;
+/// Oren-Nayar sigma: 0 is Lambert; beyond 90 degrees a slope deviation means nothing.
+constexpr double kMinSigmaDeg = 0.0, kMaxSigmaDeg = 90.0;
 
 }  // namespace hilite::brdf

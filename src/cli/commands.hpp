@@ -11,6 +11,7 @@ using Action = std::function<int()>;
 
 Action addRender(CLI::App& app);
 Action addMeasure(CLI::App& app);
+Action addBrdf(CLI::App& app);
 Action addRun(CLI::App& app);
 Action addMerge(CLI::App& app);
 

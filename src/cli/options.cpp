@@ -1,6 +1,9 @@
 #include "cli/options.hpp"
 
+#include "brdf/materials.hpp"
+#include "brdf/spectral.hpp"
 #include "core/error.hpp"
+#include "render/shader_source.hpp"
 
 #include <unistd.h>
 
@@ -47,16 +50,45 @@ double checkRange(const std::string& flag, double v, double lo, double hi) {
 }
 
 void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHelp) {
-    app.add_option("--scene", f.sceneFile, "scene file (TOML) whose keys are these flags; flags given here override it");
-    app.add_option("--model", f.model, "specular model: phong (reflection lobe) | blinn | beckmann | ggx (microfacet)")
+    app.add_option("--scene", f.sceneFile,
+                   "scene file (TOML) whose keys are these flags; flags given here override it");
+    std::string materials;
+    for (const auto& m : brdf::materialNames()) materials += (materials.empty() ? "" : ", ") + m;
+    app.add_option("--model", f.model,
+                   "specular model: phong | phong-classic (reflection lobes) | blinn | gaussian | beckmann | ggx "
+                   "(microfacet) | none (diffuse only)")
         ->capture_default_str();
-    app.add_option("--exponent", f.exponent, "phong/blinn exponent n, in [0, 1e8]")->capture_default_str();
-    app.add_option("--roughness", f.roughness, "beckmann m / ggx alpha (the formulas' symbols), in [1e-4, 10]")
+    app.add_option("--exponent", f.exponent, "phong/phong-classic/blinn exponent n, in [0, 1e8]")
         ->capture_default_str();
-    app.add_option("--fresnel", f.fresnel, "none (F = 1) | schlick")->capture_default_str();
-    app.add_option("--f0", f.f0, "Schlick F0: V or R,G,B, each in [0, 1]")->capture_default_str();
-    app.add_option("--geometry", f.geometry, "implicit (G = cos_i cos_o) | smith (height-correlated)")
+    app.add_option("--roughness", f.roughness,
+                   "beckmann m / ggx alpha / gaussian m in radians (the formulas' symbols; alpha_x if anisotropic), "
+                   "in [1e-4, 10]")
         ->capture_default_str();
+    app.add_option("--roughness-y", f.roughnessY,
+                   "anisotropic beckmann/ggx: alpha_y, in [1e-4, 10] (absent: isotropic)");
+    app.add_option("--tangent-angle", f.tangentAngle,
+                   "anisotropic: azimuth of the alpha_x axis in degrees, [-360, 360]")
+        ->capture_default_str();
+    app.add_option("--fresnel", f.fresnel,
+                   "none (F = 1) | schlick | dielectric | conductor (exact) | spectral (measured metal); default: the "
+                   "material's, else none");
+    app.add_option("--material", f.material, "Fresnel preset: " + materials + " (copper, gold: spectral)");
+    app.add_option("--eta", f.eta,
+                   "dielectric/conductor index eta = n_t/n_i: V or R,G,B, each in [0.01, 100] "
+                   "(default: the material's, else 1.5)");
+    app.add_option("--k", f.k,
+                   "conductor extinction k: V or R,G,B, each in [0, 100] (default: the material's, else 0)");
+    app.add_option("--f0", f.f0,
+                   "Schlick F0: V or R,G,B, each in [0, 1] (default: F(0) of --eta/--k or of the "
+                   "material, else 0.04)");
+    app.add_option("--geometry", f.geometry,
+                   "none (G = 1) | implicit (G = cos_i cos_o) | cook-torrance (V-cavity) | smith-separable | smith "
+                   "(height-correlated)")
+        ->capture_default_str();
+    app.add_option("--diffuse", f.diffuse, "none | lambert | oren-nayar, added to the specular lobe")
+        ->capture_default_str();
+    app.add_option("--albedo", f.albedo, "diffuse albedo rho: V or R,G,B, each in [0, 1]")->capture_default_str();
+    app.add_option("--sigma", f.sigma, "oren-nayar facet slope deviation in degrees, [0, 90]")->capture_default_str();
     app.add_option("--incidence", f.incidence, incidenceHelp)->capture_default_str();
     app.add_option("--azimuth", f.azimuth, "light azimuth phi_i in degrees, [-360, 360]")->capture_default_str();
     app.add_option("--irradiance", f.irradiance, "light irradiance E (normal to the light), in [0, 1e6]")
@@ -64,29 +96,87 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
     app.add_option("--size", f.size, "image size: PX or WxH, each in [1, 16384]")->capture_default_str();
     app.add_option("--view", f.view, "measure (camera on the mirror direction) | photo (looking across the plane)")
         ->capture_default_str();
-    app.add_option("--elevation", f.elevation, "photo view: camera elevation in degrees, (0, 90]; default 90 - incidence");
+    app.add_option("--elevation", f.elevation,
+                   "photo view: camera elevation in degrees, (0, 90]; default 90 - incidence");
     app.add_option("--distance", f.distance, "photo view: camera distance from the origin, in [1e-3, 1e6]")
         ->capture_default_str();
     app.add_option("--gl-backend", f.backend, "auto | osmesa | egl (default: $HILITE_GL_BACKEND, else auto)");
 }
 
 brdf::Params brdfParams(const SceneFlags& f) {
+    using brdf::Fresnel;
+    // One value or R,G,B, each a finite number in [lo, hi].
+    auto rgbFlag = [](const std::string& flag, const std::string& text, double lo, double hi) {
+        const auto parts = split(text, ',');
+        if (parts.size() != 1 && parts.size() != 3)
+            throw InputError(flag + ": expected V or R,G,B (got '" + text + "')");
+        dvec3 v;
+        for (int c = 0; c < 3; ++c)
+            v[c] = checkRange(flag, parseNumber(flag, parts[parts.size() == 1 ? 0 : size_t(c)]), lo, hi);
+        return v;
+    };
+    auto choice = [](const std::string& flag, const std::string& text, auto parse,
+                     const std::vector<std::string>& allowed) {
+        if (auto v = parse(text)) return *v;
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        throw InputError(flag + ": unknown '" + text + "' (allowed: " + list + ")");
+    };
     brdf::Params p;
-    auto model = brdf::parseModel(f.model);
-    if (!model) throw InputError("--model: unknown model '" + f.model + "' (allowed: phong, blinn, beckmann, ggx)");
-    p.model = *model;
+    p.model = choice("--model", f.model, brdf::parseModel, brdf::modelNames());
     p.exponent = checkRange("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent);
     p.roughness = checkRange("--roughness", f.roughness, brdf::kMinRoughness, brdf::kMaxRoughness);
-    auto fresnel = brdf::parseFresnel(f.fresnel);
-    if (!fresnel) throw InputError("--fresnel: unknown '" + f.fresnel + "' (allowed: none, schlick)");
-    p.fresnel = *fresnel;
-    auto geometry = brdf::parseGeometry(f.geometry);
-    if (!geometry) throw InputError("--geometry: unknown '" + f.geometry + "' (allowed: implicit, smith)");
-    p.geometry = *geometry;
-    const auto parts = split(f.f0, ',');
-    if (parts.size() != 1 && parts.size() != 3) throw InputError("--f0: expected V or R,G,B (got '" + f.f0 + "')");
-    for (int c = 0; c < 3; ++c)
-        p.f0[c] = checkRange("--f0", parseNumber("--f0", parts[parts.size() == 1 ? 0 : size_t(c)]), 0.0, 1.0);
+    if (!f.roughnessY.empty()) {
+        if (!brdf::allowsAnisotropy(p.model))
+            throw InputError("--roughness-y: anisotropy needs --model beckmann or ggx (got '" + f.model + "')");
+        p.roughnessY = checkRange("--roughness-y", parseNumber("--roughness-y", f.roughnessY), brdf::kMinRoughness,
+                                  brdf::kMaxRoughness);
+    }
+    p.tangentAngleDeg = checkRange("--tangent-angle", f.tangentAngle, -360, 360);
+    p.geometry = choice("--geometry", f.geometry, brdf::parseGeometry, brdf::geometryNames());
+    p.diffuse = choice("--diffuse", f.diffuse, brdf::parseDiffuse, brdf::diffuseNames());
+    p.albedo = rgbFlag("--albedo", f.albedo, 0.0, 1.0);
+    p.sigmaDeg = checkRange("--sigma", f.sigma, brdf::kMinSigmaDeg, brdf::kMaxSigmaDeg);
+
+    // Fresnel: a material names a mode and its constants; --fresnel, --eta, --k, --f0 override them.
+    const brdf::Material* mat = f.material.empty() ? nullptr : brdf::findMaterial(f.material);
+    if (!f.material.empty() && !mat) {
+        std::string list;
+        for (const auto& m : brdf::materialNames()) list += (list.empty() ? "" : ", ") + m;
+        throw InputError("--material: unknown '" + f.material + "' (allowed: " + list + ")");
+    }
+    p.fresnel = f.fresnel.empty() ? (mat ? mat->fresnel : Fresnel::None)
+                                  : choice("--fresnel", f.fresnel, brdf::parseFresnel, brdf::fresnelNames());
+    if (mat && brdf::hasSpectralData(mat->name)) {
+        p.spectrum = brdf::loadSpectrum(render::dataDirectory(), mat->name, f.spectralStepNm);
+        // The metal's RGB stand-ins for the other modes: eta, k at 650 / 550 / 450 nm, F0 = spectral F(0).
+        for (int c = 0; c < 3; ++c) {
+            const dvec2 ek = p.spectrum->etaK(650.0 - 100.0 * c);
+            p.eta[c] = ek.x;
+            p.k[c] = ek.y;
+        }
+        p.f0 = brdf::F_Spectral(1.0, *p.spectrum);
+    } else if (mat) {
+        p.eta = mat->eta, p.k = mat->k, p.f0 = mat->f0;
+    }
+    const std::string fresnelName = brdf::toString(p.fresnel);
+    if (mat && mat->fresnel == Fresnel::Schlick &&
+        (p.fresnel == Fresnel::Dielectric || p.fresnel == Fresnel::Conductor))
+        throw InputError("--fresnel " + fresnelName + ": " + mat->name + " has an F0 preset only (use schlick)");
+    if (mat && mat->fresnel != Fresnel::Dielectric && p.fresnel == Fresnel::Dielectric)
+        throw InputError("--fresnel dielectric: " + mat->name + " is a metal (use conductor, schlick or spectral)");
+    if (p.fresnel == Fresnel::Spectral && !p.spectrum)
+        throw InputError("--fresnel spectral: needs --material copper or gold (the measured spectra)");
+    if ((!f.eta.empty() || !f.k.empty()) && p.fresnel == Fresnel::Spectral)
+        throw InputError(std::string(f.eta.empty() ? "--k" : "--eta") +
+                         ": not used by --fresnel spectral (the material's spectrum is)");
+    if (!f.k.empty() && p.fresnel == Fresnel::Dielectric) throw InputError("--k: only for --fresnel conductor");
+    if (!f.eta.empty()) p.eta = rgbFlag("--eta", f.eta, brdf::kMinEta, brdf::kMaxEta);
+    if (!f.k.empty()) p.k = rgbFlag("--k", f.k, brdf::kMinK, brdf::kMaxK);
+    if (!f.f0.empty())
+        p.f0 = rgbFlag("--f0", f.f0, 0.0, 1.0);
+    else if (!f.eta.empty() || !f.k.empty())  // Schlick's F0 of the index given
+        for (int c = 0; c < 3; ++c) p.f0[c] = brdf::F_Conductor(1.0, p.eta[c], p.k[c]);
     return p;
 }
 

@@ -99,6 +99,15 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
     if (prog.uniform("uExponent") >= 0) prog.set("uExponent", float(b.exponent));
     if (prog.uniform("uRoughness") >= 0) prog.set("uRoughness", float(b.roughness));
     if (prog.uniform("uF0") >= 0) set3(prog, "uF0", b.f0);
+    // terms of issue 4: anisotropy, Gaussian k_G, eta, k, spectral arrays, diffuse (render::termUniforms)
+    for (const TermUniform& u : termUniforms(b)) {
+        const int loc = prog.uniform(u.name.c_str());
+        if (loc < 0) continue;  // term switched out of this program
+        const auto count = GLsizei(u.values.size() / size_t(u.components));
+        if (u.components == 1) glUniform1fv(loc, count, u.values.data());
+        else if (u.components == 2) glUniform2fv(loc, count, u.values.data());
+        else glUniform3fv(loc, count, u.values.data());
+    }
 }
 
 void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image) {

@@ -1,5 +1,7 @@
 #include "render/shader_source.hpp"
 
+#include "brdf/ndf.hpp"
+#include "brdf/spectral.hpp"
 #include "core/error.hpp"
 
 #include <unistd.h>
@@ -14,12 +16,13 @@
 #ifndef HILITE_INSTALL_SHADER_DIR
 #define HILITE_INSTALL_SHADER_DIR "/usr/local/share/hilite/shaders"
 #endif
+#ifndef HILITE_INSTALL_DATA_DIR
+#define HILITE_INSTALL_DATA_DIR "/usr/local/share/hilite/data"
+#endif
 
 namespace hilite::render {
 
 namespace {
-
-bool isDirectoryWithShaders(const std::string& dir) { return std::ifstream(dir + "/brdf.glsl").good(); }
 
 std::string executableDirectory() {
     char buf[4096];
@@ -37,22 +40,35 @@ std::string readFile(const std::string& path) {
     return ss.str();
 }
 
-}  // namespace
-
-std::string shaderDirectory() {
+/// The first of $env, <exe>/../share/hilite/<sub> and installDir that holds `probe`; never the
+/// current directory. Throws SystemError listing the places tried.
+std::string findDirectory(const char* env, const std::string& sub, const std::string& installDir,
+                          const std::string& probe, const std::string& what) {
+    auto holds = [&](const std::string& dir) { return std::ifstream(dir + "/" + probe).good(); };
     std::vector<std::string> tried;
-    if (const char* env = std::getenv("HILITE_SHADER_DIR"); env && *env) {
-        if (isDirectoryWithShaders(env)) return env;
-        tried.push_back(std::string(env) + " ($HILITE_SHADER_DIR)");
+    if (const char* e = std::getenv(env); e && *e) {
+        if (holds(e)) return e;
+        tried.push_back(std::string(e) + " ($" + env + ")");
     }
     const std::string exe = executableDirectory();
-    for (const std::string& dir : {exe + "/../share/hilite/shaders", std::string(HILITE_INSTALL_SHADER_DIR)}) {
-        if (isDirectoryWithShaders(dir)) return dir;
+    for (const std::string& dir : {exe + "/../share/hilite/" + sub, installDir}) {
+        if (holds(dir)) return dir;
         tried.push_back(dir);
     }
     std::string list;
     for (const auto& t : tried) list += (list.empty() ? "" : ", ") + t;
-    throw SystemError("shader files not found (looked in " + list + ")");
+    throw SystemError(what + " not found (looked in " + list + ")");
+}
+
+}  // namespace
+
+std::string shaderDirectory() {
+    return findDirectory("HILITE_SHADER_DIR", "shaders", HILITE_INSTALL_SHADER_DIR, "brdf.glsl", "shader files");
+}
+
+std::string dataDirectory() {
+    return findDirectory("HILITE_DATA_DIR", "data", HILITE_INSTALL_DATA_DIR, "colorimetry/cie1931_2deg_cmf.csv",
+                         "data files");
 }
 
 std::vector<ShaderBlock> parseBlocks(const std::string& text, const std::string& file) {
@@ -84,82 +100,240 @@ std::vector<ShaderBlock> parseBlocks(const std::string& text, const std::string&
     return blocks;
 }
 
-std::vector<std::string> termBlocks(const brdf::Params& p) {
-    using brdf::Model;
-    if (p.model == Model::Phong) return {"Phong_Normalized"};
-    std::vector<std::string> out{"HalfVector"};
-    switch (p.model) {
-        case Model::Blinn: out.push_back("D_BlinnPhong"); break;
-        case Model::Beckmann: out.push_back("D_Beckmann"); break;
-        case Model::GGX: out.push_back("D_GGX"); break;
-        case Model::Phong: break;
-    }
-    if (p.fresnel == brdf::Fresnel::Schlick) out.push_back("F_Schlick");
-    if (p.geometry == brdf::Geometry::Smith) {
-        out.push_back(p.model == Model::GGX ? "Lambda_GGX" : "Lambda_Beckmann");
-        out.push_back("G2_SmithCorrelated");
-    }
-    return out;
-}
-
 namespace {
 
-std::string distributionCall(const brdf::Params& p) {
+using brdf::Diffuse;
+using brdf::Fresnel;
+using brdf::Geometry;
+using brdf::Model;
+
+bool anisotropic(const brdf::Params& p) { return p.anisotropic() && brdf::allowsAnisotropy(p.model); }
+bool usesSmith(const brdf::Params& p) {
+    return p.geometry == Geometry::Smith || p.geometry == Geometry::SmithSeparable;
+}
+
+std::string distributionBlock(const brdf::Params& p) {
+    if (anisotropic(p)) return p.model == Model::GGX ? "D_GGXAniso" : "D_BeckmannAniso";
     switch (p.model) {
-        case brdf::Model::Blinn: return "D_BlinnPhong(hv.oneMinusNoH, uExponent)";
-        case brdf::Model::Beckmann: return "D_Beckmann(hv.NoH, hv.sin2h, uRoughness)";
-        case brdf::Model::GGX: return "D_GGX(hv.NoH, hv.sin2h, uRoughness)";
-        case brdf::Model::Phong: break;
+        case Model::Blinn: return "D_BlinnPhong";
+        case Model::Beckmann: return "D_Beckmann";
+        case Model::GGX: return "D_GGX";
+        case Model::Gaussian: return "D_Gaussian";
+        default: return "";
     }
-    return "0.0";
+}
+
+/// Blinn-Phong and the Gaussian have no exact Smith Lambda: both use Beckmann's (see brdf/evaluate.cpp).
+std::string lambdaBlock(const brdf::Params& p) {
+    if (anisotropic(p)) return p.model == Model::GGX ? "Lambda_GGXAniso" : "Lambda_BeckmannAniso";
+    return p.model == Model::GGX ? "Lambda_GGX" : "Lambda_Beckmann";
+}
+
+std::string fresnelBlock(Fresnel f) {
+    switch (f) {
+        case Fresnel::Schlick: return "F_Schlick";
+        case Fresnel::Dielectric: return "F_Dielectric";
+        case Fresnel::Conductor: return "F_Conductor";
+        case Fresnel::Spectral: return "F_Spectral";
+        case Fresnel::None: break;
+    }
+    return "";
+}
+
+std::string geometryBlock(Geometry g) {
+    switch (g) {
+        case Geometry::CookTorrance: return "G_CookTorrance";
+        case Geometry::SmithSeparable: return "G2_SmithSeparable";
+        case Geometry::Smith: return "G2_SmithCorrelated";
+        case Geometry::None:
+        case Geometry::Implicit: break;
+    }
+    return "";
+}
+
+std::string diffuseBlock(Diffuse d) {
+    return d == Diffuse::Lambert ? "Fd_Lambert" : d == Diffuse::OrenNayar ? "Fd_OrenNayar" : "";
+}
+
+std::string distributionCall(const brdf::Params& p) {
+    if (anisotropic(p)) return distributionBlock(p) + "(ht.x, ht.y, hv.NoH, uAlpha.x, uAlpha.y)";
+    switch (p.model) {
+        case Model::Blinn: return "D_BlinnPhong(hv.oneMinusNoH, uExponent)";
+        case Model::Beckmann: return "D_Beckmann(hv.NoH, hv.sin2h, uRoughness)";
+        case Model::GGX: return "D_GGX(hv.NoH, hv.sin2h, uRoughness)";
+        case Model::Gaussian: return "D_Gaussian(hv.NoH, hv.sin2h, uRoughness, uGaussianNorm)";
+        default: return "0.0";
+    }
 }
 
 std::string lambdaCall(const brdf::Params& p) {
+    if (anisotropic(p)) return lambdaBlock(p) + "(toTangent(w), uAlpha.x, uAlpha.y)";
     switch (p.model) {
-        case brdf::Model::GGX: return "Lambda_GGX(cosTheta, uRoughness)";
-        case brdf::Model::Beckmann: return "Lambda_Beckmann(cosTheta, uRoughness)";
-        // Blinn-Phong has no exact Smith Lambda; use Beckmann's with m = sqrt(2 / (n + 2)) (Walter 2007).
-        case brdf::Model::Blinn: return "Lambda_Beckmann(cosTheta, sqrt(2.0 / (uExponent + 2.0)))";
-        case brdf::Model::Phong: break;
+        case Model::GGX: return "Lambda_GGX(w.z, uRoughness)";
+        case Model::Beckmann:
+        case Model::Gaussian: return "Lambda_Beckmann(w.z, uRoughness)";
+        // Blinn-Phong: Beckmann's Lambda with m = sqrt(2 / (n + 2)) (Walter 2007).
+        case Model::Blinn: return "Lambda_Beckmann(w.z, sqrt(2.0 / (uExponent + 2.0)))";
+        default: return "0.0";
     }
-    return "0.0";
+}
+
+std::string fresnelCall(Fresnel f) {
+    switch (f) {
+        case Fresnel::Schlick: return "F_Schlick(uF0, VoH)";
+        case Fresnel::Dielectric:
+            return "vec3(F_Dielectric(VoH, uEta.r), F_Dielectric(VoH, uEta.g), F_Dielectric(VoH, uEta.b))";
+        case Fresnel::Conductor:
+            return "vec3(F_Conductor(VoH, uEta.r, uK.r), F_Conductor(VoH, uEta.g, uK.g), "
+                   "F_Conductor(VoH, uEta.b, uK.b))";
+        case Fresnel::Spectral: return "F_Spectral(VoH, uSpectralEtaK, uSpectralWeight)";
+        case Fresnel::None: break;
+    }
+    return "vec3(1.0)";
+}
+
+/// The factor G / (4 cos_i cos_o) applied to D, as one line of the generated specular().
+std::string geometryLine(Geometry g) {
+    switch (g) {
+        case Geometry::None: return "    s /= 4.0 * wi.z * wo.z;  // G = 1\n";
+        case Geometry::Implicit:
+            return "    s *= 0.25;  // implicit G = cos(theta_i) cos(theta_o) cancels the denominator\n";
+        case Geometry::CookTorrance:
+            return "    s *= G_CookTorrance(hv.NoH, wo.z, wi.z, hv.VoH) / (4.0 * wi.z * wo.z);\n";
+        case Geometry::SmithSeparable:
+            return "    s *= G2_SmithSeparable(lambda(wi), lambda(wo)) / (4.0 * wi.z * wo.z);\n";
+        case Geometry::Smith: return "    s *= G2_SmithCorrelated(lambda(wi), lambda(wo)) / (4.0 * wi.z * wo.z);\n";
+    }
+    return "";
+}
+
+/// Uniform declarations and specular() of a microfacet model.
+void microfacetDispatch(std::ostream& s, const brdf::Params& p) {
+    if (anisotropic(p))
+        s << "uniform vec2 uAlpha;    // alpha_x, alpha_y\n"
+             "uniform vec2 uTangent;  // cos, sin of the tangent angle\n";
+    else
+        s << (brdf::usesExponent(p.model) ? "uniform float uExponent;\n" : "uniform float uRoughness;\n");
+    if (p.model == Model::Gaussian) s << "uniform float uGaussianNorm;  // k_G\n";
+    switch (p.fresnel) {
+        case Fresnel::Schlick: s << "uniform vec3 uF0;\n"; break;
+        case Fresnel::Dielectric: s << "uniform vec3 uEta;\n"; break;
+        case Fresnel::Conductor: s << "uniform vec3 uEta;\nuniform vec3 uK;\n"; break;
+        case Fresnel::Spectral:
+            s << "uniform vec2 uSpectralEtaK[HILITE_SPECTRAL_SAMPLES];\n"
+                 "uniform vec3 uSpectralWeight[HILITE_SPECTRAL_SAMPLES];\n";
+            break;
+        case Fresnel::None: break;
+    }
+    if (anisotropic(p))
+        s << "vec3 toTangent(vec3 w) {\n"
+             "    return vec3(w.x * uTangent.x + w.y * uTangent.y, -w.x * uTangent.y + w.y * uTangent.x, w.z);\n}\n"
+             "float distribution(HalfVector hv) {\n    vec3 ht = toTangent(hv.h);\n    return "
+          << distributionCall(p) << ";\n}\n";
+    else
+        s << "float distribution(HalfVector hv) { return " << distributionCall(p) << "; }\n";
+    if (usesSmith(p)) s << "float lambda(vec3 w) { return " << lambdaCall(p) << "; }\n";
+    if (p.fresnel != Fresnel::None) s << "vec3 fresnel(float VoH) { return " << fresnelCall(p.fresnel) << "; }\n";
+    s << "vec3 specular(vec3 wi, vec3 wo) {\n"
+         "    HalfVector hv = halfVector(wi, wo);\n"
+         "    if (!hv.valid) return vec3(0.0);\n"
+         "    float s = distribution(hv);\n"
+      << geometryLine(p.geometry)
+      << (p.fresnel != Fresnel::None ? "    return s * fresnel(hv.VoH);\n" : "    return vec3(s);\n") << "}\n";
 }
 
 }  // namespace
 
+std::vector<std::string> termBlocks(const brdf::Params& p) {
+    std::vector<std::string> out;
+    if (p.model == Model::Phong) out.push_back("Phong_Normalized");
+    if (p.model == Model::PhongClassic) out.push_back("Phong_Classic");
+    if (brdf::isMicrofacet(p.model)) {
+        out.push_back("HalfVector");
+        out.push_back(distributionBlock(p));
+        if (p.fresnel != Fresnel::None) out.push_back(fresnelBlock(p.fresnel));
+        if (usesSmith(p)) out.push_back(lambdaBlock(p));
+        if (p.geometry != Geometry::None && p.geometry != Geometry::Implicit) out.push_back(geometryBlock(p.geometry));
+    }
+    if (p.diffuse != Diffuse::None) out.push_back(diffuseBlock(p.diffuse));
+    return out;
+}
+
 std::string dispatchSource(const brdf::Params& p) {
     std::ostringstream s;
-    s << "// ---- Dispatch (generated for: " << p << ") ----\n";
-    if (p.model == brdf::Model::Phong) {
+    s << "// ---- Dispatch (generated for the terms:";
+    for (const auto& b : termBlocks(p)) s << " " << b;
+    s << ") ----\n";
+    const bool specular = p.model != Model::None, diffuse = p.diffuse != Diffuse::None;
+    if (p.model == Model::Phong || p.model == Model::PhongClassic) {
         s << "uniform float uExponent;\n"
-             "vec3 brdf(vec3 wi, vec3 wo) {\n"
+             "vec3 specular(vec3 wi, vec3 wo) {\n"
              "    vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2\n"
-             "    return vec3(Phong_Normalized(0.5 * dot(d, d), uExponent));\n"
-             "}\n";
-        return s.str();
+             "    return vec3("
+          << (p.model == Model::Phong ? "Phong_Normalized" : "Phong_Classic") << "(0.5 * dot(d, d), uExponent));\n}\n";
+    } else if (specular) {
+        microfacetDispatch(s, p);
     }
-    s << (brdf::usesExponent(p.model) ? "uniform float uExponent;\n" : "uniform float uRoughness;\n");
-    if (p.fresnel == brdf::Fresnel::Schlick) s << "uniform vec3 uF0;\n";
-    s << "float distribution(HalfVector hv) { return " << distributionCall(p) << "; }\n";
-    if (p.geometry == brdf::Geometry::Smith) s << "float lambda(float cosTheta) { return " << lambdaCall(p) << "; }\n";
-    s << "vec3 brdf(vec3 wi, vec3 wo) {\n"
-         "    HalfVector hv = halfVector(wi, wo);\n"
-         "    if (!hv.valid) return vec3(0.0);\n"
-         "    vec3 f = vec3(distribution(hv));\n";
-    if (p.fresnel == brdf::Fresnel::Schlick) s << "    f *= F_Schlick(uF0, hv.VoH);\n";
-    if (p.geometry == brdf::Geometry::Smith)
-        s << "    f *= G2_SmithCorrelated(lambda(wi.z), lambda(wo.z)) / (4.0 * wi.z * wo.z);\n";
-    else
-        s << "    f *= 0.25;  // implicit G = cos(theta_i) cos(theta_o) cancels the denominator\n";
-    s << "    return f;\n}\n";
+    if (p.diffuse == Diffuse::Lambert)
+        s << "uniform vec3 uAlbedo;\nvec3 diffuse(vec3 wi, vec3 wo) { return Fd_Lambert(uAlbedo); }\n";
+    if (p.diffuse == Diffuse::OrenNayar)
+        s << "uniform vec3 uAlbedo;\nuniform float uSigma;  // radians\n"
+             "vec3 diffuse(vec3 wi, vec3 wo) { return Fd_OrenNayar(uAlbedo, uSigma, wi.z, wo.z, dot(wi, wo)); }\n";
+    s << "vec3 brdf(vec3 wi, vec3 wo) { return "
+      << (specular && diffuse ? "specular(wi, wo) + diffuse(wi, wo)"
+          : specular          ? "specular(wi, wo)"
+          : diffuse           ? "diffuse(wi, wo)"
+                              : "vec3(0.0)")
+      << "; }\n";
     return s.str();
 }
 
+std::vector<TermUniform> termUniforms(const brdf::Params& p) {
+    std::vector<TermUniform> u;
+    auto rgb = [](const dvec3& v) { return std::vector<float>{float(v.x), float(v.y), float(v.z)}; };
+    if (anisotropic(p)) {
+        double c, sn;
+        cosSinDeg(p.tangentAngleDeg, c, sn);
+        u.push_back({"uAlpha", 2, {float(p.alphaX()), float(p.alphaY())}});
+        u.push_back({"uTangent", 2, {float(c), float(sn)}});
+    }
+    if (p.model == Model::Gaussian)
+        u.push_back({"uGaussianNorm", 1, {float(brdf::gaussianNormalization(p.roughness))}});
+    u.push_back({"uEta", 3, rgb(p.eta)});
+    u.push_back({"uK", 3, rgb(p.k)});
+    if (p.spectrum) {
+        TermUniform etaK{"uSpectralEtaK", 2, {}}, weight{"uSpectralWeight", 3, {}};
+        for (size_t i = 0; i < p.spectrum->size(); ++i) {
+            etaK.values.insert(etaK.values.end(), {float(p.spectrum->eta[i]), float(p.spectrum->k[i])});
+            const auto w = rgb(p.spectrum->weight[i]);
+            weight.values.insert(weight.values.end(), w.begin(), w.end());
+        }
+        u.push_back(etaK);
+        u.push_back(weight);
+    }
+    u.push_back({"uAlbedo", 3, rgb(p.albedo)});
+    u.push_back({"uSigma", 1, {float(deg2rad(p.sigmaDeg))}});
+    return u;
+}
+
+namespace {
+
+/// The wavelength count of a spectral Fresnel on the GPU (0 when there is none); throws if it cannot run.
+size_t spectralSamples(const brdf::Params& p) {
+    if (!brdf::isMicrofacet(p.model) || p.fresnel != Fresnel::Spectral) return 0;
+    if (!p.spectrum) throw InputError("--fresnel spectral: needs a material with spectral data (copper, gold)");
+    if (p.spectrum->size() > size_t(brdf::kMaxGpuSamples))
+        throw SystemError("spectral Fresnel: the GPU takes at most " + std::to_string(brdf::kMaxGpuSamples) +
+                          " wavelengths (got " + std::to_string(p.spectrum->size()) + ")");
+    return p.spectrum->size();
+}
+
+}  // namespace
+
 std::string effectKey(const brdf::Params& p, Output out) {
-    std::string key = out == Output::Measure ? "measure" : "color";
-    for (const auto& b : termBlocks(p)) key += "+" + b;
-    if (p.model == brdf::Model::Blinn && p.geometry == brdf::Geometry::Smith) key += "+blinnLambda";
-    return key;
+    // The dispatch names every term and call (never a parameter value), so it identifies the program.
+    return std::string(out == Output::Measure ? "measure" : "color") + "|" + std::to_string(spectralSamples(p)) + "|" +
+           dispatchSource(p);
 }
 
 ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
@@ -183,6 +357,7 @@ ProgramSources assemble(const brdf::Params& p, Output out, const std::string& di
     src.vertex.push_back({"shaders/plane.vert", 1, readFile(dir + "/plane.vert")});
     std::string config = "#version 450 core\n";
     config += out == Output::Measure ? "#define HILITE_OUTPUT_MEASURE 1\n" : "#define HILITE_OUTPUT_COLOR 1\n";
+    if (const size_t n = spectralSamples(p)) config += "#define HILITE_SPECTRAL_SAMPLES " + std::to_string(n) + "\n";
     src.fragment.push_back({"<generated config>", 1, config});
     for (const ShaderBlock* b : ordered) src.fragment.push_back({brdfFile, b->firstLine, b->text});
     src.fragment.push_back({"<generated dispatch>", 1, dispatchSource(p)});

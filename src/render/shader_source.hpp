@@ -17,6 +17,9 @@ enum class Output { Color, Measure };
 /// Where the shader files are: $HILITE_SHADER_DIR, else <exe>/../share/hilite/shaders, else the
 /// install prefix. Never the current directory. Throws SystemError listing the places tried.
 std::string shaderDirectory();
+/// Where the data files are (data/ of the source tree: metals/, colorimetry/), found the same way:
+/// $HILITE_DATA_DIR, else <exe>/../share/hilite/data, else the install prefix.
+std::string dataDirectory();
 
 /// One "//@block NAME needs A B" ... "//@end" section of a shader file.
 struct ShaderBlock {
@@ -31,8 +34,19 @@ std::vector<ShaderBlock> parseBlocks(const std::string& text, const std::string&
 
 /// The term blocks a BRDF needs (before dependency closure), e.g. {"D_GGX", "HalfVector"}.
 std::vector<std::string> termBlocks(const brdf::Params& p);
-/// GLSL of the generated dispatch: uniforms and `vec3 brdf(vec3 wi, vec3 wo)`.
+/// GLSL of the generated dispatch: uniforms and `vec3 brdf(vec3 wi, vec3 wo)`. It names only the
+/// terms switched in (no fresnel() at all for Fresnel::None) and no parameter values.
 std::string dispatchSource(const brdf::Params& p);
+
+/// A uniform the terms read, with its values (an array when values.size() > components).
+struct TermUniform {
+    std::string name;
+    int components = 1;  ///< 1, 2 or 3: float, vec2, vec3
+    std::vector<float> values;
+};
+/// The uniforms of the terms beyond uExponent / uRoughness / uF0 (anisotropy, Gaussian k_G, eta, k,
+/// spectral arrays, diffuse): all that the parameters define; a program uses those it declares.
+std::vector<TermUniform> termUniforms(const brdf::Params& p);
 /// Key identifying the compiled program (effect set + output), for the program cache.
 std::string effectKey(const brdf::Params& p, Output out);
 

@@ -1,0 +1,66 @@
+#pragma once
+// Fresnel reflectance F(cos theta_i) of a smooth interface, unpolarized light. Twin of the F_* blocks of
+// shaders/brdf.glsl. The exact forms return the s- and p-polarized parts too (.x = Rs, .y = Rp), so
+// tests can check Brewster's angle; F is their mean. eta = n_t / n_i, relative to the incident medium.
+// The spectral form (a sum of F_Conductor over wavelengths) is in brdf/spectral.hpp.
+
+#include "core/math.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hilite::brdf {
+
+/// Schlick's Fresnel approximation: F = F0 + (1 - F0)(1 - cos)^5. Schlick 1994 "An inexpensive BRDF
+/// model for physically-based rendering". Against F_Dielectric its error peaks near grazing (< 0.07
+/// for water and glass, above 80 degrees: tests/brdf/test_fresnel.cpp).
+inline dvec3 F_Schlick(const dvec3& f0, double VoH) {
+    const double c = std::clamp(1.0 - VoH, 0.0, 1.0);
+    const double c2 = c * c;
+    return f0 + (dvec3(1.0) - f0) * (c2 * c2 * c);
+}
+
+/// Exact dielectric Fresnel, polarized parts: Rs = ((ci - eta ct) / (ci + eta ct))^2,
+/// Rp = ((eta ci - ct) / (eta ci + ct))^2, with Snell's sin(theta_t) = sin(theta_i) / eta.
+/// Born & Wolf "Principles of optics", sec. 1.5.2; the form of pbrt-v4's FrDielectric.
+inline dvec2 F_DielectricSP(double cosTheta_i, double eta) {
+    const double ci = std::clamp(cosTheta_i, 0.0, 1.0);
+    const double sin2Theta_t = (1.0 - ci * ci) / (eta * eta);
+    if (sin2Theta_t >= 1.0) return dvec2(1.0);  // total internal reflection (eta < 1 beyond the critical angle)
+    const double ct = std::sqrt(1.0 - sin2Theta_t);
+    const double rs = (ci - eta * ct) / (ci + eta * ct);
+    const double rp = (eta * ci - ct) / (eta * ci + ct);
+    return {rs * rs, rp * rp};
+}
+
+/// Exact unpolarized dielectric Fresnel: F = (Rs + Rp) / 2. F(0) = ((eta - 1) / (eta + 1))^2.
+inline double F_Dielectric(double cosTheta_i, double eta) {
+    const dvec2 r = F_DielectricSP(cosTheta_i, eta);
+    return 0.5 * (r.x + r.y);
+}
+
+/// Exact conductor Fresnel for the complex index eta + i k, polarized parts, in real arithmetic:
+/// a^2 + b^2 = sqrt((eta^2 - k^2 - sin^2)^2 + 4 eta^2 k^2), a^2 = (a^2 + b^2 + eta^2 - k^2 - sin^2) / 2,
+/// Rs = (a^2 + b^2 - 2a cos + cos^2) / (a^2 + b^2 + 2a cos + cos^2),
+/// Rp = Rs (cos^2 (a^2 + b^2) - 2a cos sin^2 + sin^4) / (cos^2 (a^2 + b^2) + 2a cos sin^2 + sin^4).
+/// Born & Wolf sec. 14.2; Rp without tan(theta) (finite at grazing) as in Lagarde 2013 "Memo on Fresnel
+/// equations". Equal to pbrt-v4's complex FrComplex (tests); k = 0 gives F_Dielectric, TIR included.
+/// The denominators vanish only for eta = k = 0, which the CLI rejects (eta >= 0.01).
+inline dvec2 F_ConductorSP(double cosTheta_i, double eta, double k) {
+    const double c = std::clamp(cosTheta_i, 0.0, 1.0), c2 = c * c, s2 = 1.0 - c2;
+    const double t0 = eta * eta - k * k - s2;
+    const double a2b2 = std::sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
+    const double a = safeSqrt(0.5 * (a2b2 + t0));
+    const double t1 = a2b2 + c2, t2 = 2.0 * a * c;
+    const double Rs = (t1 - t2) / (t1 + t2);
+    const double t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+    return {Rs, Rs * (t3 - t4) / (t3 + t4)};
+}
+
+/// Exact unpolarized conductor Fresnel: F = (Rs + Rp) / 2. F(0) = ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2).
+inline double F_Conductor(double cosTheta_i, double eta, double k) {
+    const dvec2 r = F_ConductorSP(cosTheta_i, eta, k);
+    return 0.5 * (r.x + r.y);
+}
+
+}  // namespace hilite::brdf

@@ -1,0 +1,257 @@
+// `hilite brdf`: the physics of the reflectance terms as numbers, computed in double on the CPU with the
+// full spectral tables (1 nm): directional-hemispherical reflectance vs theta (albedo), Fresnel vs theta,
+// the NDF's normalization, and the Fresnel colour strip of a material (PNG). A table by default; with
+// --json one JSON object per line.
+
+#include "brdf/evaluate.hpp"
+#include "brdf/integrate.hpp"
+#include "brdf/spectral.hpp"
+#include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "core/error.hpp"
+#include "io/image_io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <sstream>
+
+namespace hilite::cli {
+
+namespace {
+
+struct BrdfFlags {
+    SceneFlags scene;
+    bool json = false;
+    bool spectral = false;                              ///< fresnel, strip: --spectral
+    std::string roughness = "0.02,0.05,0.1,0.2,0.5,1";  ///< normalization: the sweep
+    std::string exponent = "1,10,100,1000,10000";
+    std::string png;  ///< strip: -o
+};
+
+/// Keeps only the named options of `app` (and --help): the scene flags a subcommand does not use go.
+void keepOnly(CLI::App& app, std::set<std::string> names) {
+    names.insert("--help");
+    for (CLI::Option* o : app.get_options()) {
+        bool keep = false;
+        for (const auto& l : o->get_lnames()) keep = keep || names.count("--" + l);
+        if (!keep) app.remove_option(o);
+    }
+}
+
+/// "0.1", "0.1,0.2" or START:STOP:STEP (inclusive), each value finite in [lo, hi].
+std::vector<double> parseList(const std::string& flag, const std::string& text, double lo, double hi) {
+    auto number = [&](const std::string& t) {
+        size_t used = 0;
+        double v = 0;
+        try {
+            v = std::stod(t, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used == 0 || used != t.size()) throw InputError(flag + ": '" + t + "' is not a number");
+        return v;
+    };
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    const char sep = text.find(':') != std::string::npos ? ':' : ',';
+    for (std::string p; std::getline(in, p, sep);) parts.push_back(p);
+    if (!text.empty() && text.back() == sep) parts.push_back("");
+    std::vector<double> out;
+    if (sep == ':') {
+        if (parts.size() != 3) throw InputError(flag + ": a range is START:STOP:STEP (got '" + text + "')");
+        const double a = checkRange(flag, number(parts[0]), lo, hi), b = checkRange(flag, number(parts[1]), lo, hi);
+        const double step = number(parts[2]);
+        if (!(step > 0) || b < a || (b - a) / step > 1e5)
+            throw InputError(flag + ": range needs START <= STOP, STEP > 0 and at most 1e5 values (got '" + text +
+                             "')");
+        const long n = std::lround(std::floor((b - a) / step + 1e-9));
+        for (long i = 0; i <= n; ++i) out.push_back(a + double(i) * step);
+    } else {
+        for (const auto& p : parts) out.push_back(checkRange(flag, number(p), lo, hi));
+    }
+    if (out.empty()) throw InputError(flag + ": no value given");
+    return out;
+}
+
+std::string rowFormat(double v) {
+    std::ostringstream s;
+    s << std::setw(12) << std::setprecision(7) << v;
+    return s.str();
+}
+
+void printRgbRows(const BrdfFlags& f, const std::vector<double>& thetas, const char* key,
+                  const std::function<dvec3(double)>& value) {
+    for (double t : thetas) {
+        const dvec3 v = value(t);
+        if (f.json) {
+            std::cout << nlohmann::ordered_json{{"theta_deg", t}, {key, {v.x, v.y, v.z}}}.dump() << "\n";
+        } else {
+            std::cout << rowFormat(t) << rowFormat(v.x) << rowFormat(v.y) << rowFormat(v.z) << "\n";
+        }
+    }
+}
+
+/// What a Fresnel term is, for the table's header and the strip's log line.
+std::string describeFresnel(const brdf::Params& p) {
+    std::ostringstream s;
+    auto rgb = [&](const char* name, const dvec3& v) { s << " " << name << "=" << v.x << "," << v.y << "," << v.z; };
+    s << "fresnel=" << p.fresnel;
+    if (p.fresnel == brdf::Fresnel::Schlick) rgb("f0", p.f0);
+    if (p.fresnel == brdf::Fresnel::Dielectric || p.fresnel == brdf::Fresnel::Conductor) rgb("eta", p.eta);
+    if (p.fresnel == brdf::Fresnel::Conductor) rgb("k", p.k);
+    if (p.fresnel == brdf::Fresnel::Spectral)
+        s << " material=" << p.spectrum->name << " wavelengths=" << p.spectrum->size() << " ("
+          << p.spectrum->lambdaNm.front() << ".." << p.spectrum->lambdaNm.back()
+          << " nm, CIE 1931 2-degree, D65, linear sRGB)";
+    return s.str();
+}
+
+/// The Fresnel of the flags: --spectral sets the mode; the mode must be one (not none).
+brdf::Params fresnelParams(BrdfFlags f) {
+    if (f.spectral) {
+        if (!brdf::hasSpectralData(f.scene.material))
+            throw InputError("--spectral: measured spectra exist for --material copper and gold only");
+        if (!f.scene.fresnel.empty() && f.scene.fresnel != "spectral")
+            throw InputError("--spectral: conflicts with --fresnel " + f.scene.fresnel);
+        f.scene.fresnel = "spectral";
+    }
+    const brdf::Params p = brdfParams(f.scene);
+    if (p.fresnel == brdf::Fresnel::None)
+        throw InputError("--fresnel: give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
+    return p;
+}
+
+int runAlbedo(const BrdfFlags& f) {
+    const brdf::Params p = brdfParams(f.scene);
+    const auto thetas = parseIncidence(f.scene.incidence, true);
+    const double phi = checkRange("--azimuth", f.scene.azimuth, -360, 360);
+    if (!f.json)
+        std::cout << "# " << p << " azimuth=" << phi << "\n#    theta_deg    albedo_r    albedo_g    albedo_b\n";
+    printRgbRows(f, thetas, "albedo", [&](double t) { return brdf::albedo(p, t, phi); });
+    return 0;
+}
+
+int runFresnel(const BrdfFlags& f) {
+    const brdf::Params p = fresnelParams(f);
+    const auto thetas = parseIncidence(f.scene.incidence, true);
+    if (!f.json) std::cout << "# " << describeFresnel(p) << "\n#    theta_deg           r           g           b\n";
+    printRgbRows(f, thetas, "rgb", [&](double t) {
+        double c, s;
+        cosSinDeg(t, c, s);
+        return brdf::fresnel(p, c);
+    });
+    return 0;
+}
+
+int runNormalization(const BrdfFlags& f) {
+    auto model = brdf::parseModel(f.scene.model);
+    if (!model || !brdf::isMicrofacet(*model))
+        throw InputError("--model: normalization needs an NDF: blinn, gaussian, beckmann, ggx (got '" + f.scene.model +
+                         "')");
+    const bool exponent = brdf::usesExponent(*model);
+    const auto values = exponent ? parseList("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent)
+                                 : parseList("--roughness", f.roughness, brdf::kMinRoughness, brdf::kMaxRoughness);
+    if (!f.json)
+        std::cout << "# int D(h) (n.h) dw_h, model=" << f.scene.model << "\n#    roughness    exponent    integral\n";
+    for (double v : values) {
+        SceneFlags s = f.scene;
+        (exponent ? s.exponent : s.roughness) = v;
+        const brdf::Params p = brdfParams(s);
+        const double integral = brdf::ndfIntegral(p);
+        nlohmann::ordered_json j{{"roughness", nullptr}, {"exponent", nullptr}, {"integral", integral}};
+        j[exponent ? "exponent" : "roughness"] = v;
+        if (f.json)
+            std::cout << j.dump() << "\n";
+        else
+            std::cout << (exponent ? std::string(12, ' ') + rowFormat(v) : rowFormat(v) + std::string(12, ' '))
+                      << std::setw(12) << std::setprecision(10) << integral << "\n";
+    }
+    return 0;
+}
+
+int runStrip(const BrdfFlags& f) {
+    const brdf::Params p = fresnelParams(f);
+    int width = 0, height = 0;
+    parseSize(f.scene.size, width, height);
+    if (f.png.empty()) throw InputError("-o: give the PNG to write");
+    io::checkWritable(f.png, "-o");
+    ImageF img(width, height, 3);
+    for (int x = 0; x < width; ++x) {  // normal incidence on the left, grazing on the right
+        double c, s;
+        cosSinDeg(90.0 * (x + 0.5) / width, c, s);
+        const dvec3 F = brdf::fresnel(p, c);
+        for (int y = 0; y < height; ++y)
+            for (int ch = 0; ch < 3; ++ch) img.pixel(x, y)[ch] = float(F[ch]);
+    }
+    io::writePng(f.png, img, io::Exposure{});
+    std::cout << "wrote " << f.png << ": " << width << "x" << height << " Fresnel strip, theta 0 (left) to 90 (right) "
+              << "degrees, linear F sRGB-encoded: " << describeFresnel(p) << "\n";
+    return 0;
+}
+
+/// A subcommand's flags: the scene flags it uses (the rest removed), defaults of its own; the CPU uses
+/// the full 1 nm tables.
+std::shared_ptr<BrdfFlags> subcommandFlags(CLI::App& sub, const std::string& incidence, const std::string& size,
+                                           const std::set<std::string>& keep) {
+    auto f = std::make_shared<BrdfFlags>();
+    f->scene.spectralStepNm = brdf::kFullStepNm;
+    f->scene.incidence = incidence;
+    f->scene.size = size;
+    addSceneFlags(sub, f->scene, "angles theta_i in degrees: one, a list or START:STOP:STEP, each in [0, 90]");
+    keepOnly(sub, keep);
+    return f;
+}
+
+const std::set<std::string> kFresnelFlags{"--material", "--fresnel", "--eta", "--k", "--f0", "--incidence"};
+const char* kSpectralHelp = "spectral Fresnel of the material's measured eta, k (implied for copper, gold)";
+const char* kJsonHelp = "one JSON object per line instead of the table";
+
+}  // namespace
+
+Action addBrdf(CLI::App& app) {
+    app.require_subcommand(1);
+    CLI::App* albedo = app.add_subcommand("albedo", "directional-hemispherical reflectance vs theta_i (CPU, double)");
+    auto fa = subcommandFlags(
+        *albedo, "0:85:5", "",
+        {"--model", "--exponent", "--roughness", "--roughness-y", "--tangent-angle", "--fresnel", "--material", "--eta",
+         "--k", "--f0", "--geometry", "--diffuse", "--albedo", "--sigma", "--incidence", "--azimuth"});
+    albedo->add_flag("--json", fa->json, kJsonHelp);
+    albedo->footer("A light at 90 degrees delivers nothing: albedo 0 there by the horizon convention.");
+
+    CLI::App* fresnel = app.add_subcommand("fresnel", "Fresnel reflectance F vs theta_i, RGB or spectral");
+    auto ff = subcommandFlags(*fresnel, "0:90:5", "", kFresnelFlags);
+    fresnel->add_flag("--spectral", ff->spectral, kSpectralHelp);
+    fresnel->add_flag("--json", ff->json, kJsonHelp);
+
+    CLI::App* normalization = app.add_subcommand("normalization", "int D(h) (n.h) dw_h of an NDF (1 if normalized)");
+    auto fn = subcommandFlags(*normalization, "0", "", {"--model", "--roughness-y", "--tangent-angle"});
+    normalization->add_option("--roughness", fn->roughness, "roughness values: list or START:STOP:STEP, in [1e-4, 10]")
+        ->capture_default_str();
+    normalization->add_option("--exponent", fn->exponent, "exponents (blinn): list or START:STOP:STEP, in [0, 1e8]")
+        ->capture_default_str();
+    normalization->add_flag("--json", fn->json, kJsonHelp);
+
+    CLI::App* strip = app.add_subcommand("strip", "PNG of a material's Fresnel colour, theta 0 (left) to 90 (right)");
+    auto fs = subcommandFlags(*strip, "0", "512x64", {"--material", "--fresnel", "--eta", "--k", "--f0", "--size"});
+    strip->add_flag("--spectral", fs->spectral, kSpectralHelp);
+    strip->add_option("-o,--output", fs->png, "PNG output (sRGB-encoded linear F)");
+
+    app.footer(
+        "Examples: hilite brdf fresnel --material copper --incidence 0:90:5\n"
+        "          hilite brdf albedo --model ggx --roughness 0.3 --geometry smith --json\n"
+        "          hilite brdf normalization --model beckmann --roughness 0.02,0.1,1\n"
+        "          hilite brdf strip --material gold -o gold.png");
+    return [=] {
+        if (albedo->parsed()) return runAlbedo(*fa);
+        if (fresnel->parsed()) return runFresnel(*ff);
+        if (normalization->parsed()) return runNormalization(*fn);
+        return runStrip(*fs);
+    };
+}
+
+}  // namespace hilite::cli
