@@ -11,6 +11,11 @@ uniform vec2 uTanHalf;    // image half extents at unit focal distance
 uniform vec2 uViewport;   // width, height in pixels
 uniform vec3 uWi;         // towards the light (unit)
 uniform float uIrradiance;
+#if defined(HILITE_LIGHT_POINT)
+uniform vec3 uLightPos;   // point light position, intensity I
+uniform float uIntensity;
+uniform vec3 uCamPos;     // the eye
+#endif
 uniform vec3 uWr;         // chart: mirror direction, +u (towards the normal), +v
 uniform vec3 uEu;
 uniform vec3 uEv;
@@ -36,11 +41,22 @@ void main() {
     vec3 d = -uCamBack + xy.x * uCamRight + xy.y * uCamUp;
     float len = sqrt(dot(d, d));
     vec3 we = -d / len;  // exitant direction: from the surface towards the eye
-    if (we.z <= 0.0 || uWi.z <= 0.0) {  // grazing or below: no surface radiance reaches this pixel
+#if defined(HILITE_LIGHT_POINT)
+    // Point light: wi and the irradiance I cos(theta_i) / d^2 belong to the point this pixel sees.
+    vec3 P = uCamPos - (uCamPos.z / we.z) * we;
+    vec3 toLight = uLightPos - P;
+    float d2 = dot(toLight, toLight);
+    vec3 wi = toLight / sqrt(d2);
+    float E = uIntensity / d2;
+#else
+    vec3 wi = uWi;
+    float E = uIrradiance;
+#endif
+    if (we.z <= 0.0 || wi.z <= 0.0) {  // grazing or below: no surface radiance reaches this pixel
         fragColor = vec4(0.0);
         return;
     }
-    vec3 rad = brdf(uWi, we) * (uIrradiance * uWi.z);  // L = f(wi, wo) E cos(theta_i)
+    vec3 rad = brdf(wi, we) * (E * wi.z);  // L = f(wi, wo) E cos(theta_i)
 #if defined(HILITE_OUTPUT_MEASURE)
     float rhoOverSin;
     vec2 uv = chartCoords(we, rhoOverSin);

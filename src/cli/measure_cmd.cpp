@@ -26,6 +26,11 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["fresnel"] = brdf::toString(s.brdf.fresnel);
     j["geometry"] = brdf::toString(s.brdf.geometry);
     j["incidence_deg"] = s.light.incidenceDeg;
+    j["light"] = render::toString(s.light.type);
+    // Under a point light each point of the plane has its own wi: the measured lobe is the eye's view.
+    j["lobe"] = s.light.type == render::LightType::Point
+                    ? "as seen by the eye at distance " + std::to_string(s.eyeDistance) + " (point light)"
+                    : std::string("exitant directions (distant light)");
     j["azimuth_deg"] = s.light.azimuthDeg;
     j["threshold"] = f.threshold;
     j["method"] = method;
@@ -66,9 +71,7 @@ void printTableRow(const nlohmann::json& j) {
 ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
     ResolvedMeasure r;
     render::Scene& scene = r.scene;
-    scene.brdf = brdfParams(f.scene);
-    scene.light.azimuthDeg = checkRange("--azimuth", f.scene.azimuth, -360, 360);
-    scene.light.irradiance = checkRange("--irradiance", f.scene.irradiance, 0, 1e6);
+    scene = sceneOf(f.scene);
     r.angles = parseIncidence(f.scene.incidence, true);
     scene.light.incidenceDeg = r.angles.front();
     experiments::MeasureSetup& setup = r.setup;

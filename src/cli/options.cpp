@@ -98,7 +98,13 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
         ->capture_default_str();
     app.add_option("--elevation", f.elevation,
                    "photo view: camera elevation in degrees, (0, 90]; default 90 - incidence");
-    app.add_option("--distance", f.distance, "photo view: camera distance from the origin, in [1e-3, 1e6]")
+    app.add_option("--light", f.light, "directional (distant, irradiance E) | point (intensity I, I cos / d^2)")
+        ->capture_default_str();
+    app.add_option("--intensity", f.intensity, "point light intensity I, in [0, 1e12]")->capture_default_str();
+    app.add_option("--light-distance", f.lightDistance, "point light distance from the origin, in [1e-3, 1e6]")
+        ->capture_default_str();
+    app.add_option("--distance", f.distance,
+                   "eye distance from the origin (photo view; measurement view under a point light), in [1e-3, 1e6]")
         ->capture_default_str();
     app.add_option("--gl-backend", f.backend, "auto | osmesa | egl (default: $HILITE_GL_BACKEND, else auto)");
 }
@@ -180,6 +186,20 @@ brdf::Params brdfParams(const SceneFlags& f) {
     return p;
 }
 
+render::Scene sceneOf(const SceneFlags& f) {
+    render::Scene s;
+    s.brdf = brdfParams(f);
+    s.light.azimuthDeg = checkRange("--azimuth", f.azimuth, -360, 360);
+    s.light.irradiance = checkRange("--irradiance", f.irradiance, 0, 1e6);
+    if (f.light == "point") s.light.type = render::LightType::Point;
+    else if (f.light != "directional")
+        throw InputError("--light: unknown light '" + f.light + "' (allowed: directional, point)");
+    s.light.intensity = checkRange("--intensity", f.intensity, 0, 1e12);
+    s.light.distance = checkRange("--light-distance", f.lightDistance, 1e-3, 1e6);
+    s.eyeDistance = checkRange("--distance", f.distance, 1e-3, 1e6);
+    return s;
+}
+
 void parseSize(const std::string& s, int& width, int& height) {
     const auto x = s.find('x');
     const double w = parseNumber("--size", s.substr(0, x));
@@ -236,7 +256,7 @@ PinholeCamera viewCamera(const SceneFlags& f, View view, const render::Scene& sc
         // Keep the camera above the plane when the mirror direction is at the horizon.
         dvec3 center = chart.wr();
         if (center.z < 1e-6) center = glm::normalize(dvec3(center.x, center.y, 1e-6));
-        return PinholeCamera::measurement(chart, center, fov, width, height);
+        return PinholeCamera::measurementFrom(chart, render::eyePosition(scene), center, fov, width, height);
     }
     const double elevation = f.elevation > 0 ? f.elevation : std::max(0.5, 90.0 - scene.light.incidenceDeg);
     checkRange("--elevation", elevation, 1e-3, 90.0);

@@ -37,7 +37,10 @@ struct SceneFlags {
     double fov = 0.0;  ///< 0: the view's default (render) or automatic framing (measure)
     std::string view = "measure";
     double elevation = -1.0;  ///< photo view; < 0: 90 - incidence (the mirror direction)
-    double distance = 10.0;   ///< photo view
+    double distance = 10.0;   ///< the eye's distance from the origin (photo view; point light in any view)
+    std::string light = "directional";
+    double intensity = 1.0;       ///< point light I
+    double lightDistance = 10.0;  ///< point light distance from the origin
     std::string backend = "";  ///< empty: $HILITE_GL_BACKEND or auto
     std::string sceneFile;     ///< --scene: already expanded into flags by cli::run
 };
@@ -47,6 +50,8 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
 
 /// The validated BRDF of the flags.
 brdf::Params brdfParams(const SceneFlags& f);
+/// The validated scene of the flags (BRDF, light, eye distance); the incidence is left to the caller.
+render::Scene sceneOf(const SceneFlags& f);
 /// Parses --size "N" or "WxH" within 1..16384 and the memory this machine has.
 void parseSize(const std::string& s, int& width, int& height);
 /// Parses --incidence: "30", "0,30,60" or "0:85:5" (start:stop:step, inclusive), each in [0, 90].

@@ -41,11 +41,8 @@ double peakOf(const ImageF& img) {
 }
 
 int runRender(const RenderFlags& f) {
-    render::Scene scene;
-    scene.brdf = brdfParams(f.scene);
+    render::Scene scene = sceneOf(f.scene);
     scene.light.incidenceDeg = parseIncidence(f.scene.incidence, false).front();
-    scene.light.azimuthDeg = checkRange("--azimuth", f.scene.azimuth, -360, 360);
-    scene.light.irradiance = checkRange("--irradiance", f.scene.irradiance, 0, 1e6);
     int width = 0, height = 0;
     parseSize(f.scene.size, width, height);
     checkRange("--fov", f.scene.fov, 0, 179);

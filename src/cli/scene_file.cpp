@@ -178,8 +178,9 @@ std::vector<SceneArg> loadSceneFile(const std::string& path, const CLI::App& app
 }
 
 void assignSections(CLI::App& app, size_t firstOption) {
-    static const std::map<std::string, std::string> light = {{"incidence", "Light"}, {"azimuth", "Light"},
-                                                             {"irradiance", "Light"}, {"light", "Light"}};
+    static const std::map<std::string, std::string> light = {
+        {"incidence", "Light"}, {"azimuth", "Light"}, {"irradiance", "Light"},
+        {"light", "Light"},     {"intensity", "Light"}, {"light-distance", "Light"}};
     static const std::map<std::string, std::string> camera = {
         {"size", "Camera"}, {"fov", "Camera"}, {"view", "Camera"}, {"elevation", "Camera"},
         {"distance", "Camera"}, {"gl-backend", "Camera"}};

@@ -50,6 +50,11 @@ PinholeCamera PinholeCamera::measurement(const MirrorChart& chart, const dvec3& 
     return lookAt(distance * center, dvec3(0.0), chart.eu(), fovDeg, width, height);
 }
 
+PinholeCamera PinholeCamera::measurementFrom(const MirrorChart& chart, const dvec3& eye, const dvec3& center,
+                                             double fovDeg, int width, int height) {
+    return lookAt(eye, eye - center, chart.eu(), fovDeg, width, height);
+}
+
 PinholeCamera PinholeCamera::photo(double elevationDeg, double azimuthDeg, double distance, double fovDeg,
                                    int width, int height) {
     const dvec3 dir = sphericalDirectionDeg(90.0 - elevationDeg, azimuthDeg);

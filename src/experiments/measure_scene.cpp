@@ -72,17 +72,18 @@ bool reframe(const PinholeCamera& cam, const RegionBox& box, double fill, Frame&
 }  // namespace
 
 PinholeCamera measurementCamera(const render::Scene& scene, const dvec3& center, double fovDeg, int w, int h) {
-    return PinholeCamera::measurement(scene.light.chart(), liftAboveHorizon(center), fovDeg, w, h);
+    return PinholeCamera::measurementFrom(scene.light.chart(), render::eyePosition(scene), liftAboveHorizon(center),
+                                          fovDeg, w, h);
 }
 
 measure::LobeFunction twinLobe(const render::Scene& scene) {
     const MirrorChart chart = scene.light.chart();
-    const dvec3 wi = scene.light.direction();
+    const dvec3 eye = render::eyePosition(scene);
     measure::LobeFunction f;
     f.lobe = [=](double u, double v) {
         const dvec3 we = chart.direction(u, v);
         if (we.z <= 0.0) return 0.0;
-        return brdf::luminance(brdf::radiance(scene.brdf, wi, we, scene.light.irradiance));
+        return brdf::luminance(render::surfaceRadiance(scene, eye, we));
     };
     f.visible = [=](double u, double v) { return chart.direction(u, v).z > 0.0; };
     return f;

@@ -1,5 +1,6 @@
 #include "render/renderer.hpp"
 
+#include "brdf/evaluate.hpp"
 #include "gl/check.hpp"
 
 #include <glad/gl.h>
@@ -11,8 +12,29 @@
 namespace hilite::render {
 
 std::ostream& operator<<(std::ostream& os, const Scene& s) {
-    return os << s.brdf << " incidence=" << s.light.incidenceDeg << " azimuth=" << s.light.azimuthDeg
-              << " irradiance=" << s.light.irradiance;
+    os << s.brdf << " light=" << toString(s.light.type) << " incidence=" << s.light.incidenceDeg
+       << " azimuth=" << s.light.azimuthDeg;
+    if (s.light.type == LightType::Point)
+        return os << " intensity=" << s.light.intensity << " light_distance=" << s.light.distance
+                  << " eye_distance=" << s.eyeDistance;
+    return os << " irradiance=" << s.light.irradiance;
+}
+
+const char* toString(LightType t) { return t == LightType::Point ? "point" : "directional"; }
+
+dvec3 eyePosition(const Scene& s) {
+    dvec3 c = s.light.chart().wr();
+    if (c.z < 1e-6) c = glm::normalize(dvec3(c.x, c.y, 1e-6));
+    return s.eyeDistance * c;
+}
+
+dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we) {
+    if (s.light.type == LightType::Directional)
+        return brdf::radiance(s.brdf, s.light.direction(), we, s.light.irradiance);
+    const dvec3 p = eye - (eye.z / we.z) * we;  // where the eye's ray meets the plane
+    const dvec3 toLight = s.light.position() - p;
+    const double d2 = glm::dot(toLight, toLight);
+    return brdf::radiance(s.brdf, toLight / std::sqrt(d2), we, s.light.intensity / d2);
 }
 
 namespace {
@@ -73,11 +95,13 @@ Renderer::~Renderer() {
     if (m_vao) glDeleteVertexArrays(1, &m_vao);
 }
 
-const gl::Program& Renderer::program(const brdf::Params& p, Output out) {
-    const std::string key = effectKey(p, out);
+const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightType light) {
+    const std::string key = effectKey(p, out) + (light == LightType::Point ? "+pointLight" : "");
     auto it = m_programs.find(key);
     if (it != m_programs.end()) return *it->second;
-    const ProgramSources src = assemble(p, out, m_shaderDir);
+    ProgramSources src = assemble(p, out, m_shaderDir);
+    // The light is an effect too: the point-light code in shade.frag compiles only when named.
+    if (light == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
     auto prog = std::make_unique<gl::Program>(src.vertex, src.fragment);
     return *m_programs.emplace(key, std::move(prog)).first->second;
 }
@@ -91,6 +115,11 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
     prog.set("uViewport", float(cam.width), float(cam.height));
     set3(prog, "uWi", scene.light.direction());
     prog.set("uIrradiance", float(scene.light.irradiance));
+    if (prog.uniform("uLightPos") >= 0) {  // point light only
+        set3(prog, "uLightPos", scene.light.position());
+        prog.set("uIntensity", float(scene.light.intensity));
+        set3(prog, "uCamPos", cam.position);
+    }
     const MirrorChart chart = scene.light.chart();
     set3(prog, "uWr", chart.wr());
     set3(prog, "uEu", chart.eu());
@@ -111,7 +140,7 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
 }
 
 void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image) {
-    const gl::Program& prog = program(scene.brdf, out);
+    const gl::Program& prog = program(scene.brdf, out, scene.light.type);
     gl::Framebuffer& fbo = framebuffer(camera.width, camera.height);
     fbo.bind();
     glDisable(GL_BLEND);

@@ -29,7 +29,7 @@ public:
     ImageF render(const Scene& scene, const PinholeCamera& camera, Output out);
 
     /// The program for an effect set (compiled on first use).
-    const gl::Program& program(const brdf::Params& p, Output out);
+    const gl::Program& program(const brdf::Params& p, Output out, LightType light = LightType::Directional);
     size_t programCount() const { return m_programs.size(); }
     const std::string& shaderDir() const { return m_shaderDir; }
 

@@ -9,21 +9,44 @@
 
 namespace hilite::render {
 
-/// A distant (directional) light: direction by incidence theta_i and azimuth phi_i, irradiance E on a
-/// surface facing it. The plane receives E cos(theta_i).
-struct DirectionalLight {
+enum class LightType {
+    Directional,  ///< distant: irradiance E from one direction, the same at every point of the plane
+    Point,        ///< isotropic point: intensity I, irradiance I cos(theta) / d^2 (inverse-square law)
+};
+const char* toString(LightType);
+
+/// The light: its direction from the origin by incidence theta_i and azimuth phi_i. A directional light
+/// delivers irradiance E (on a surface facing it), so the plane receives E cos(theta_i); a point light
+/// sits at `distance` along that direction and delivers I cos(theta) / d^2 at each point of the plane.
+struct Light {
+    LightType type = LightType::Directional;
     double incidenceDeg = 45.0;
     double azimuthDeg = 0.0;
-    double irradiance = 1.0;
+    double irradiance = 1.0;  ///< directional E
+    double intensity = 1.0;   ///< point I
+    double distance = 10.0;   ///< point: distance from the origin
     dvec3 direction() const { return sphericalDirectionDeg(incidenceDeg, azimuthDeg); }
+    dvec3 position() const { return distance * direction(); }
     MirrorChart chart() const { return MirrorChart::fromDegrees(incidenceDeg, azimuthDeg); }
 };
 
 struct Scene {
     brdf::Params brdf;
-    DirectionalLight light;
+    Light light;
+    /// Distance of the eye (the measurement camera) from the origin, on the mirror direction. Only a
+    /// point light makes the image depend on it: a distant light's radiance depends on direction alone.
+    double eyeDistance = 10.0;
 };
 
 std::ostream& operator<<(std::ostream&, const Scene&);
+
+/// The eye of the measurement view: on the mirror direction (lifted 1e-6 rad above the horizon at
+/// grazing incidence), at scene.eyeDistance from the origin.
+dvec3 eyePosition(const Scene& s);
+
+/// Radiance reaching an eye at `eye` from the plane along exitant direction `we` (unit, we.z > 0):
+/// f(wi, we) E cos(theta_i), with wi and E those of the point the ray meets. Double-precision twin of
+/// the shader's main(): for a directional light `eye` is irrelevant.
+dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we);
 
 }  // namespace hilite::render

@@ -54,7 +54,8 @@ TEST_CASE("cli::render bad input: one line naming the flag, exit 2, nothing writ
                          Case{"--size 0", "--size"}, Case{"--size 16385", "--size"},
                          Case{"--size 16384x16384x", "--size"}, Case{"--fresnel maybe", "--fresnel"},
                          Case{"--f0 1.5", "--f0"}, Case{"--geometry none2", "--geometry"},
-                         Case{"--view sideways", "--view"}}) {
+                         Case{"--view sideways", "--view"}, Case{"--light spot", "--light"},
+                         Case{"--light-distance 0", "--light-distance"}, Case{"--intensity -1", "--intensity"}}) {
         CAPTURE(c.args);
         const auto r = hilite(std::string("render ") + c.args + " -o " + out);
         CHECK(r.code == 2);

@@ -136,3 +136,25 @@ TEST_CASE("experiments::measureGl diagnostics") {
         CHECK(m.renders <= 3);
     }
 }
+
+TEST_CASE("experiments::measureGl point light: the eye's view, against the reference and the distant limit") {
+    render::Scene s = scene(brdf::Model::GGX, 0.1, 45);
+    s.light.type = render::LightType::Point;
+    s.light.distance = 3;
+    s.eyeDistance = 3;
+    const auto m = glMeasure(s);
+    const auto r = experiments::measureReference(s, {});
+    CHECK(std::abs(m.shape.aspect - r.shape.aspect) < 0.005);
+    CHECK(std::abs(m.shape.major_deg / r.shape.major_deg - 1.0) < 0.01);
+    // Light and eye at the same distance: both directions turn as the eye's ray moves along the plane,
+    // so the half vector moves half as fast and the highlight spans about half the angle.
+    const auto directional = glMeasure(scene(brdf::Model::GGX, 0.1, 45));
+    CHECK(m.shape.major_deg < 0.6 * directional.shape.major_deg);
+    // A point light far away (intensity scaled with d^2) is a distant light.
+    s.light.distance = 1e6;
+    s.light.intensity = 1e12;
+    const auto far = glMeasure(s);
+    CHECK(std::abs(far.shape.aspect - directional.shape.aspect) < 1e-3);
+    CHECK(std::abs(far.shape.major_deg / directional.shape.major_deg - 1.0) < 1e-3);
+    CHECK(std::abs(far.shape.peak / directional.shape.peak - 1.0) < 1e-3);
+}

@@ -49,12 +49,11 @@ struct TwinComparison {
 inline TwinComparison compareWithTwin(render::Renderer& r, const render::Scene& scene, const PinholeCamera& cam) {
     const ImageF img = r.render(scene, cam, render::Output::Color);
     TwinComparison out;
-    const dvec3 wi = scene.light.direction();
     std::vector<dvec3> twin(size_t(cam.width) * size_t(cam.height));
     for (int y = 0; y < cam.height; ++y)
         for (int x = 0; x < cam.width; ++x) {
             const dvec3 we = -cam.ray(x + 0.5, y + 0.5);
-            dvec3 t = we.z > 0 ? brdf::radiance(scene.brdf, wi, we, scene.light.irradiance) : dvec3(0.0);
+            dvec3 t = we.z > 0 ? render::surfaceRadiance(scene, cam.position, we) : dvec3(0.0);
             twin[size_t(y) * size_t(cam.width) + size_t(x)] = t;
             out.peak = std::max({out.peak, t.x, t.y, t.z});
         }

@@ -159,3 +159,23 @@ TEST_CASE("render::Renderer compiles one program per effect set") {
     r.render(s, cam, render::Output::Color);
     CHECK(r.programCount() == 2);
 }
+
+TEST_CASE("render::Renderer point light: every pixel matches the double twin") {
+    auto& env = test::glEnv();
+    for (double inc : {0.0, 40.0, 75.0}) {
+        render::Scene s = makeScene(brdf::Model::GGX, inc);
+        s.light.type = render::LightType::Point;
+        s.light.distance = 3.0;
+        s.light.intensity = 9.0;
+        s.eyeDistance = 4.0;
+        CAPTURE(inc);
+        const auto measureView = test::compareWithTwin(
+            *env.renderer, s, PinholeCamera::measurementFrom(s.light.chart(), render::eyePosition(s), s.light.chart().wr(), 60, 96, 64));
+        CHECK(measureView.allFinite);
+        CHECK(measureView.allNonNegative);
+        CHECK(measureView.compared >= 50);
+        CHECK(measureView.maxRelError < 1e-4);
+        const auto photo = test::compareWithTwin(*env.renderer, s, PinholeCamera::photo(30, 180, 4, 50, 96, 64));
+        CHECK(photo.maxRelError < 1e-4);
+    }
+}
