@@ -97,7 +97,7 @@ std::shared_ptr<const Spectrum> buildSpectrum(const std::string& dataDir, const 
 
 CsvTable readCsv(const std::string& path, size_t columns) {
     std::ifstream in(path);
-    if (!in) throw SystemError("cannot read data file " + path);
+    if (!in) throw InputError("cannot read data file " + path);
     CsvTable t;
     t.columns.assign(columns, {});
     bool header = true;
@@ -126,18 +126,18 @@ CsvTable readCsv(const std::string& path, size_t columns) {
                 used = 0;
             }
             if (c >= columns || used == 0)
-                throw SystemError(path + ":" + std::to_string(lineNo) + ": expected " + std::to_string(columns) +
+                throw InputError(path + ":" + std::to_string(lineNo) + ": expected " + std::to_string(columns) +
                                   " numbers per row");
             t.columns[c].push_back(v);
         }
         if (c != columns)
-            throw SystemError(path + ":" + std::to_string(lineNo) + ": expected " + std::to_string(columns) +
+            throw InputError(path + ":" + std::to_string(lineNo) + ": expected " + std::to_string(columns) +
                               " numbers per row");
     }
-    if (t.columns[0].size() < 2) throw SystemError(path + ": fewer than two rows of data");
+    if (t.columns[0].size() < 2) throw InputError(path + ": fewer than two rows of data");
     for (size_t r = 1; r < t.columns[0].size(); ++r)
         if (!(t.columns[0][r] > t.columns[0][r - 1]))
-            throw SystemError(path + ": wavelengths must increase (row " + std::to_string(r + 1) + ")");
+            throw InputError(path + ": wavelengths must increase (row " + std::to_string(r + 1) + ")");
     return t;
 }
 

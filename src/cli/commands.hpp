@@ -14,5 +14,6 @@ Action addMeasure(CLI::App& app);
 Action addBrdf(CLI::App& app);
 Action addRun(CLI::App& app);
 Action addMerge(CLI::App& app);
+Action addExplain(CLI::App& app);
 
 }  // namespace hilite::cli

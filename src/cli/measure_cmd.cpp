@@ -86,7 +86,7 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
     if (f.boundary != "subpixel" && f.boundary != "pixel")
         throw InputError("--boundary: unknown '" + f.boundary + "' (allowed: subpixel, pixel)");
     setup.options.subpixel = f.boundary == "subpixel";
-    if (f.scene.view != "measure") throw InputError("--view: measure always uses the measurement view");
+    parseView(f.scene.view);  // checked, but a measurement always uses the measurement view
     return r;
 }
 

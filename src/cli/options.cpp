@@ -94,7 +94,8 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
     app.add_option("--irradiance", f.irradiance, "light irradiance E (normal to the light), in [0, 1e6]")
         ->capture_default_str();
     app.add_option("--size", f.size, "image size: PX or WxH, each in [1, 16384]")->capture_default_str();
-    app.add_option("--view", f.view, "measure (camera on the mirror direction) | photo (looking across the plane)")
+    app.add_option("--view", f.view,
+                   "render: measure (camera on the mirror direction) | photo (looking across the plane); measure always uses the measurement view")
         ->capture_default_str();
     app.add_option("--elevation", f.elevation,
                    "photo view: camera elevation in degrees, (0, 90]; default 90 - incidence");
@@ -151,8 +152,11 @@ brdf::Params brdfParams(const SceneFlags& f) {
         for (const auto& m : brdf::materialNames()) list += (list.empty() ? "" : ", ") + m;
         throw InputError("--material: unknown '" + f.material + "' (allowed: " + list + ")");
     }
-    p.fresnel = f.fresnel.empty() ? (mat ? mat->fresnel : Fresnel::None)
-                                  : choice("--fresnel", f.fresnel, brdf::parseFresnel, brdf::fresnelNames());
+    // An F0 without a named mode asks for Schlick, the only mode that takes one.
+    p.fresnel = !f.fresnel.empty() ? choice("--fresnel", f.fresnel, brdf::parseFresnel, brdf::fresnelNames())
+                : mat              ? mat->fresnel
+                : !f.f0.empty()    ? Fresnel::Schlick
+                                   : Fresnel::None;
     if (mat && brdf::hasSpectralData(mat->name)) {
         p.spectrum = brdf::loadSpectrum(render::dataDirectory(), mat->name, f.spectralStepNm);
         // The metal's RGB stand-ins for the other modes: eta, k at 650 / 550 / 450 nm, F0 = spectral F(0).
@@ -179,6 +183,10 @@ brdf::Params brdfParams(const SceneFlags& f) {
     if (!f.k.empty() && p.fresnel == Fresnel::Dielectric) throw InputError("--k: only for --fresnel conductor");
     if (!f.eta.empty()) p.eta = rgbFlag("--eta", f.eta, brdf::kMinEta, brdf::kMaxEta);
     if (!f.k.empty()) p.k = rgbFlag("--k", f.k, brdf::kMinK, brdf::kMaxK);
+    if (!f.f0.empty() && p.fresnel != Fresnel::Schlick)
+        throw InputError("--f0: only for --fresnel schlick (--fresnel " + fresnelName +
+                         (p.fresnel == Fresnel::Spectral ? " uses the material's measured eta, k)"
+                                                         : " does not use F0)"));
     if (!f.f0.empty())
         p.f0 = rgbFlag("--f0", f.f0, 0.0, 1.0);
     else if (!f.eta.empty() || !f.k.empty())  // Schlick's F0 of the index given

@@ -45,11 +45,15 @@ std::string where(const std::string& name, const toml::node& node) {
     return name + ":" + std::to_string(node.source().begin.line);
 }
 
+/// The shortest decimal that reads back as exactly `v` (0.2, not 0.20000000000000001).
 std::string numberText(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
+    for (int digits = 15; digits <= 17; ++digits) {
+        std::ostringstream s;
+        s.precision(digits);
+        s << v;
+        if (digits == 17 || std::stod(s.str()) == v) return s.str();
+    }
+    return "";
 }
 
 /// The command-line spelling of a TOML value: numbers, strings, booleans, and arrays joined with ','.

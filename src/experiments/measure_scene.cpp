@@ -118,8 +118,11 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
         frame.fovDeg = std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(r, 1.3)) / setup.fill)), kMinFovDeg,
                                   kMaxFovDeg);
         while (m.renders < setup.maxRenders - 1) {
-            const PinholeCamera cam =
-                measurementCamera(scene, frame.center, frame.fovDeg, setup.coarseSize, setup.coarseSize);
+            // The aiming renders keep the final frame's shape, so what fits them fits the final render.
+            const double longest = std::max(setup.width, setup.height);
+            const int cw = std::max(8, int(std::lround(setup.coarseSize * setup.width / longest)));
+            const int ch = std::max(8, int(std::lround(setup.coarseSize * setup.height / longest)));
+            const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, cw, ch);
             auto t0 = Clock::now();
             renderer.render(scene, cam, render::Output::Measure, coarse);
             m.render_ms += msSince(t0);

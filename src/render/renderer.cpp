@@ -22,6 +22,19 @@ std::ostream& operator<<(std::ostream& os, const Scene& s) {
 
 const char* toString(LightType t) { return t == LightType::Point ? "point" : "directional"; }
 
+ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir) {
+    ProgramSources src = assemble(p, out, shaderDir);
+    if (light == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    return src;
+}
+
+std::vector<std::string> activeEffects(const Scene& scene) {
+    std::vector<std::string> out = termBlocks(scene.brdf);
+    out.push_back(scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
+                                                       : "directional light (E cos)");
+    return out;
+}
+
 dvec3 eyePosition(const Scene& s) {
     dvec3 c = s.light.chart().wr();
     if (c.z < 1e-6) c = glm::normalize(dvec3(c.x, c.y, 1e-6));
@@ -99,9 +112,7 @@ const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightTyp
     const std::string key = effectKey(p, out) + (light == LightType::Point ? "+pointLight" : "");
     auto it = m_programs.find(key);
     if (it != m_programs.end()) return *it->second;
-    ProgramSources src = assemble(p, out, m_shaderDir);
-    // The light is an effect too: the point-light code in shade.frag compiles only when named.
-    if (light == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    const ProgramSources src = programSources(p, out, light, m_shaderDir);
     auto prog = std::make_unique<gl::Program>(src.vertex, src.fragment);
     return *m_programs.emplace(key, std::move(prog)).first->second;
 }

@@ -17,6 +17,12 @@
 
 namespace hilite::render {
 
+/// Both stages of the program for an effect set: the assembled terms (assemble()) plus the light,
+/// which is an effect too (the point-light code of shade.frag compiles only when named).
+ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir);
+/// The effects a scene runs, in the program and in the CPU twin alike: the term blocks and the light.
+std::vector<std::string> activeEffects(const Scene& scene);
+
 class Renderer {
 public:
     /// Needs `context` current while it lives. `shaderDir` empty: found with shaderDirectory().

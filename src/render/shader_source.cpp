@@ -67,8 +67,13 @@ std::string shaderDirectory() {
 }
 
 std::string dataDirectory() {
-    return findDirectory("HILITE_DATA_DIR", "data", HILITE_INSTALL_DATA_DIR, "colorimetry/cie1931_2deg_cmf.csv",
-                         "data files");
+    // Asked for only when a scene names measured spectra: a missing file is that scene's error (exit 2).
+    try {
+        return findDirectory("HILITE_DATA_DIR", "data", HILITE_INSTALL_DATA_DIR, "colorimetry/cie1931_2deg_cmf.csv",
+                             "data file colorimetry/cie1931_2deg_cmf.csv");
+    } catch (const SystemError& e) {
+        throw InputError(e.what());
+    }
 }
 
 std::vector<ShaderBlock> parseBlocks(const std::string& text, const std::string& file) {

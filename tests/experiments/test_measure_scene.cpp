@@ -158,3 +158,18 @@ TEST_CASE("experiments::measureGl point light: the eye's view, against the refer
     CHECK(std::abs(far.shape.major_deg / directional.shape.major_deg - 1.0) < 1e-3);
     CHECK(std::abs(far.shape.peak / directional.shape.peak - 1.0) < 1e-3);
 }
+
+TEST_CASE("experiments::measureGl automatic framing fits non-square frames") {
+    render::Scene s = scene(brdf::Model::GGX, 0.08, 70);
+    s.brdf.geometry = brdf::Geometry::Smith;
+    for (auto [w, h] : {std::pair{384, 256}, {256, 384}, {512, 128}}) {
+        experiments::MeasureSetup setup;
+        setup.width = w;
+        setup.height = h;
+        const auto m = glMeasure(s, setup);
+        const int width = w;
+        CAPTURE(width);
+        CHECK_FALSE(m.shape.has(measure::Flag::Clipped));
+        CHECK(std::abs(m.shape.aspect - experiments::measureReference(s, {}).shape.aspect) < 0.005);
+    }
+}
