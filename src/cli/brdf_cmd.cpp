@@ -7,6 +7,7 @@
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
 #include "cli/commands.hpp"
+#include "experiments/strip.hpp"
 #include "cli/options.hpp"
 #include "core/error.hpp"
 #include "io/image_io.hpp"
@@ -180,15 +181,7 @@ int runStrip(const BrdfFlags& f) {
     parseSize(f.scene.size, width, height);
     if (f.png.empty()) throw InputError("-o: give the PNG to write");
     io::checkWritable(f.png, "-o");
-    ImageF img(width, height, 3);
-    for (int x = 0; x < width; ++x) {  // normal incidence on the left, grazing on the right
-        double c, s;
-        cosSinDeg(90.0 * (x + 0.5) / width, c, s);
-        const dvec3 F = brdf::fresnel(p, c);
-        for (int y = 0; y < height; ++y)
-            for (int ch = 0; ch < 3; ++ch) img.pixel(x, y)[ch] = float(F[ch]);
-    }
-    io::writePng(f.png, img, io::Exposure{});
+    experiments::writeFresnelStrip(p, width, height, f.png);
     std::cout << "wrote " << f.png << ": " << width << "x" << height << " Fresnel strip, theta 0 (left) to 90 (right) "
               << "degrees, linear F sRGB-encoded: " << describeFresnel(p) << "\n";
     return 0;

@@ -1,6 +1,7 @@
 #include "cli/experiment.hpp"
 
 #include "core/error.hpp"
+#include "brdf/materials.hpp"
 #include "io/image_io.hpp"
 
 #include <unistd.h>
@@ -107,13 +108,13 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
     }
     for (const auto& [k, v] : doc) {
         static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
-                                                         "contact_sheet", "summary"};
+                                                         "contact_sheet", "strip", "summary"};
         const std::string table(k.str());
         if (std::find(allowed.begin(), allowed.end(), table) == allowed.end()) {
             const std::string hint = didYouMean(table, allowed);
             throw InputError(line(path, v) + ": " + table + ": unknown table" +
                              (hint.empty() ? std::string() : " (did you mean '" + hint + "'?)") +
-                             "; allowed: experiment, scene, sweep, match, plot, contact_sheet, summary");
+                             "; allowed: experiment, scene, sweep, match, plot, contact_sheet, strip, summary");
         }
     }
     const std::string stem = path.substr(path.rfind('/') + 1);
@@ -159,6 +160,18 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
         e.sheetRows = parseAxis(rt, path, schema.app, rows).values;
         e.sheetColumns = parseAxis(ct, path, schema.app, cols).values;
     }
+    if (const auto* strips = doc["strip"].as_array())
+        for (const auto& st : *strips) {
+            const auto* t = st.as_table();
+            const auto material = t ? (*t)["material"].value<std::string>() : std::nullopt;
+            if (!material) throw InputError(line(path, st) + ": [[strip]] needs material = \"NAME\"");
+            if (!brdf::findMaterial(*material)) {
+                std::string all;
+                for (const auto& m : brdf::materialNames()) all += (all.empty() ? "" : ", ") + m;
+                throw InputError(line(path, st) + ": strip.material: unknown '" + *material + "' (allowed: " + all + ")");
+            }
+            e.strips.emplace_back(*material, (*t)["file"].value_or(*material + "_strip.png"));
+        }
     if (const auto* summary = doc["summary"].as_table()) {
         e.summarySeries = (*summary)["series"].value_or(std::string());
         e.summaryX = (*summary)["x"].value_or(e.summaryX);

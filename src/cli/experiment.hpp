@@ -38,6 +38,7 @@ struct Experiment {
     std::vector<experiments::PlotSpec> plots;
     std::string sheetFile = "contact_sheet.png", sheetRowKey, sheetColumnKey, sheetSize = "256x192";
     std::vector<std::string> sheetRows, sheetColumns;
+    std::vector<std::pair<std::string, std::string>> strips;  ///< [[strip]]: material, PNG file
     std::string summarySeries, summaryX = "incidence_deg";
     std::vector<double> summaryAt;
 

@@ -2,6 +2,8 @@
 
 #include "cli/experiment.hpp"
 #include "core/error.hpp"
+#include "brdf/evaluate.hpp"
+#include "experiments/strip.hpp"
 #include "io/image_io.hpp"
 
 #include <algorithm>
@@ -191,6 +193,33 @@ void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohma
             }
         io::writePng(dir + "/" + m_exp.sheetFile, sheetImg, {});
     }
+    // Fresnel strips: the material's colour from normal incidence to grazing, and F against theta.
+    std::ostringstream stripNotes;
+    for (const auto& [material, file] : m_exp.strips) {
+        SceneFlags sf;
+        sf.material = material;
+        const brdf::Params p = brdfParams(sf);
+        experiments::writeFresnelStrip(p, 512, 64, dir + "/" + file);
+        std::vector<nlohmann::json> frows;
+        for (int t = 0; t <= 90; ++t) {
+            double c, s;
+            cosSinDeg(t, c, s);
+            const dvec3 F = brdf::fresnel(p, c);
+            for (int ch = 0; ch < 3; ++ch) frows.push_back({{"theta_deg", t}, {"channel", std::string(1, "rgb"[ch])}, {"F", F[ch]}});
+        }
+        experiments::PlotSpec spec;
+        spec.file = material + "_fresnel.png";
+        spec.title = "Fresnel reflectance of " + material + " (" + brdf::toString(p.fresnel) + "), linear sRGB";
+        spec.x = "theta_deg", spec.y = "F", spec.series = "channel", spec.key = "top left";
+        std::string why;
+        if (!experiments::plot(dir, spec, frows, why)) notes.push_back("plot " + spec.file + " not made: " + why);
+        const auto st = experiments::fresnelStats(p);
+        stripNotes << std::setprecision(4) << "![" << material << " strip](" << file << ")\n\n![" << material
+                   << " Fresnel](" << spec.file << ")\n\n" << material << " (" << brdf::toString(p.fresnel)
+                   << "): F(0) = (" << st.normal.x << ", " << st.normal.y << ", " << st.normal.z << "), red dips to "
+                   << st.redMin << " at " << st.redMinThetaDeg << " deg, F(89) = (" << st.grazing89.x << ", "
+                   << st.grazing89.y << ", " << st.grazing89.z << ").\n\n";
+    }
     // summary.md
     std::ostringstream md;
     md << "# " << m_exp.title << "\n\n" << m_exp.description << "\n\n";
@@ -204,6 +233,7 @@ void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohma
         md << "\n";
     }
     for (const auto& p : m_exp.plots) md << "![" << p.title << "](" << p.file << ")\n\n";
+    md << stripNotes.str();
     if (sheet)
         md << "![contact sheet](" << m_exp.sheetFile << ")\n\nContact sheet: photo views, rows = " << m_exp.sheetRowKey
            << " (top to bottom), columns = " << m_exp.sheetColumnKey << " (left to right); each tile is exposed to its own peak.\n\n";

@@ -37,7 +37,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     io::writeFileAtomic(dir + "/" + base + ".dat", data);
 
     std::ostringstream gp;
-    gp << "set terminal pngcairo size 900,600 font 'DejaVu Sans,11'\n"
+    gp << "set terminal pngcairo size 900,600 noenhanced font 'DejaVu Sans,11'\n"
        << "set output " << quoteShell(dir + "/" + spec.file + ".tmp") << "\n"
        << "set title " << nlohmann::json(spec.title).dump() << "\n"
        << "set xlabel " << nlohmann::json(spec.xlabel.empty() ? spec.x : spec.xlabel).dump() << "\n"
