@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -122,6 +123,51 @@ TEST_CASE("cli::run killed part-way and resumed writes the same rows as an unint
     }
     REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "small.toml") + " -o " + (d / "cut") + " --resume") == 0);
     CHECK(comparable(readCsv(d / "cut/results.csv")) == comparable(readCsv(d / "full/results.csv")));
+}
+
+TEST_CASE("cli::run a real SIGKILL part-way, then --resume, gives the uninterrupted rows") {
+    Dir d;
+    std::ofstream(d / "long.toml") << std::string(kExperiment).replace(kExperiment.find("size = \"96\""), 11, "size = \"768\"")
+                                   << "[[sweep]]\nkey = \"measurement.threshold\"\nvalues = [0.3, 0.5, 0.7]\n";
+    REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "long.toml") + " -o " + (d / "full")) == 0);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        execl(HILITE_EXE, HILITE_EXE, "run", (d / "long.toml").c_str(), "-o", (d / "cut").c_str(), nullptr);
+        _exit(127);
+    }
+    // Kill it as soon as a few rows are on disk (or let it finish if it is faster than we are).
+    for (int i = 0; i < 2000; ++i) {
+        std::ifstream in(d / "cut/results.jsonl");
+        const auto rows = std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n');
+        if (rows >= 3) break;
+        usleep(1000);
+    }
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    std::ifstream partial(d / "cut/results.jsonl");
+    const auto rowsAtKill = std::count(std::istreambuf_iterator<char>(partial), std::istreambuf_iterator<char>(), '\n');
+    MESSAGE("rows on disk when killed: " << rowsAtKill << " of 24");
+    REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "long.toml") + " -o " + (d / "cut") + " --resume") == 0);
+    CHECK(comparable(readCsv(d / "cut/results.csv")) == comparable(readCsv(d / "full/results.csv")));
+}
+
+TEST_CASE("cli::run shows a progress line on a terminal only") {
+    Dir d;
+    // `script` gives the run a pseudo-terminal; popen gives it a pipe.
+    const std::string cmd = std::string(HILITE_EXE) + " run " + (d / "small.toml") + " -o " + (d / "tty");
+    FILE* p = popen(("script -qec '" + cmd + "' /dev/null 2>&1").c_str(), "r");
+    std::string out;
+    char buf[4096];
+    while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+    pclose(p);
+    CHECK(out.find("ETA") != std::string::npos);
+    CHECK(out.find("[8/8]") != std::string::npos);
+    FILE* q = popen((cmd + " 2>&1").c_str(), "r");
+    std::string piped;
+    while (size_t n = fread(buf, 1, sizeof buf, q)) piped.append(buf, n);
+    pclose(q);
+    CHECK(piped.find("ETA") == std::string::npos);
 }
 
 TEST_CASE("cli::merge shards equal a single run, row for row") {
