@@ -28,10 +28,12 @@ BumpSample bumpSample(sampler2D t0, sampler2D t1, float n, vec2 x) {
 // centred where slope s and ds/dx = J) reflects we into r(x) = reflect(-we, m(x)); to first order r is
 // Gaussian about r0 with covariance A Sx A^T in the tangent plane of wi, and the sun's radiance profile is
 // E N(r - wi; sigma^2 I). Their overlap is a Gaussian in closed form:
-//   L = E N2(d; A Sx A^T + sigma^2 I) F(we.m) (we.m) / (m.z we.z),
+//   L = E N2(d; A Sx A^T + sigma^2 I) F(we.m) [(we.m) / (m.z we.z)] G,   G = cos(theta_i) cos(theta_o),
 // d = r0 in the tangent frame of wi, (we.m) / (m.z we.z) the patch's projected area toward the eye over the
-// flat plane's (no masking). Many bumps per patch set average to E D(h) F / (4 cos theta_o): the BRDF
-// f = D F / (4 cos theta_i cos theta_o), G = 1, blurred by the sun. Walter et al. 2007 (the mirror-facet
+// flat plane's, and G the project's implicit geometry term (measurement.md: the shape set by the NDF alone;
+// nothing is traced here, and G = 1 would diverge toward the horizon). Many bumps per patch set average to
+// E D(h) F cos(theta_i) / 4: the BRDF f = D F G / (4 cos theta_i cos theta_o) = D F / 4, blurred by the sun.
+// Masking and shadowing are traced separately against the height field (src/micro/masking.cpp). Walter et al. 2007 (the mirror-facet
 // Jacobian dw_r = 4 (we.m) dw_m); the Gaussian patch as in Yan et al. 2016 (position-normal distributions).
 float bumpGlint(vec3 we, vec3 wi, vec2 s, mat2 J, mat2 Sx, float sigma, out float VoM) {
     vec3 nU = vec3(-s, 1.0);
@@ -50,7 +52,7 @@ float bumpGlint(vec3 we, vec3 wi, vec2 s, mat2 J, mat2 Sx, float sigma, out floa
     vec2 d = vec2(dot(t1, r0), dot(t2, r0));
     float det = C[0][0] * C[1][1] - C[0][1] * C[1][0];
     float q = (C[1][1] * d.x * d.x - (C[0][1] + C[1][0]) * d.x * d.y + C[0][0] * d.y * d.y) / det;
-    return exp(-0.5 * q) / (2.0 * PI * sqrt(det)) * VoM / (m.z * we.z);
+    return exp(-0.5 * q) / (2.0 * PI * sqrt(det)) * VoM * wi.z / m.z;  // (we.m)/(m.z we.z) * wi.z we.z
 }
 //@end
 

@@ -54,8 +54,9 @@ std::string microSummary(const std::vector<nlohmann::json>& rows) {
     std::ostringstream md;
     md << std::setprecision(4);
     md << "## From bumps to BRDF\n\nEach facet is a mirror; the light is a soft sun (Gaussian, std `sun` deg). As the "
-          "bumps shrink, the render converges to f = D F / (4 cos theta_i cos theta_o) (G = 1: the render traces no "
-          "masking) with the bumps' NDF, blurred by the sun; `analytic_*` is the CPU reference of that BRDF under a "
+          "bumps shrink, the render converges to f = D F G / (4 cos theta_i cos theta_o) with the implicit G = cos "
+          "theta_i cos theta_o (f = D F / 4: the shape set by the NDF alone; the render traces no masking, see below) "
+          "with the bumps' NDF, blurred by the sun; `analytic_*` is the CPU reference of that BRDF under a "
           "point-like light.\n\n";
     const nlohmann::json& any = *byIncidence.begin()->second.front();
     for (const auto& [inc, list] : byIncidence) {

@@ -12,7 +12,7 @@
 namespace hilite::cli {
 
 /// log2_bump_period_px, bump_samples_center, the analytic twin's shape (analytic_aspect, _major_deg,
-/// _minor_deg: the CPU reference of the same NDF and Fresnel with G = 1 under a point-like light), the
+/// _minor_deg: the CPU reference of the same NDF and Fresnel with implicit G under a point-like light), the
 /// differences, and the realised slope statistics (slope_rms, slope_ks).
 void addMicroFields(nlohmann::json& row, const render::Scene& s, const experiments::Measurement& m, double threshold);
 

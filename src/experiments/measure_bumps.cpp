@@ -7,7 +7,7 @@ namespace hilite::experiments {
 render::Scene analyticScene(const render::Scene& bumpy) {
     render::Scene s = bumpy;
     s.surface.bumps = false;
-    s.brdf.geometry = brdf::Geometry::None;  // the bump render has no masking: G = 1
+    s.brdf.geometry = brdf::Geometry::Implicit;  // the bump render's G = cos_i cos_o (shaders/micro.glsl)
     return s;
 }
 

@@ -6,7 +6,7 @@
 
 namespace hilite::experiments {
 
-/// The smooth twin of a bump scene: the same material, flat, geometry none (the BRDF the bumps converge to).
+/// The smooth twin of a bump scene: the same material, flat, implicit G (the BRDF the bumps converge to).
 render::Scene analyticScene(const render::Scene& bumpy);
 /// Framing by the analytic scene's automatic framing (or the fixed field of view), final render with bumps.
 Measurement measureBumps(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);

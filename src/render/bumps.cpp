@@ -119,7 +119,7 @@ double bumpGlint(const dvec3& we, const dvec3& wi, const dvec2& s, const double 
     const double c11 = AS[2] * A[2] + AS[3] * A[3] + sigma * sigma;
     const double dx = glm::dot(t1, r0), dy = glm::dot(t2, r0), det = c00 * c11 - c01 * c01;
     const double q = (c11 * dx * dx - 2.0 * c01 * dx * dy + c00 * dy * dy) / det;
-    return std::exp(-0.5 * q) / (2.0 * kPi * std::sqrt(det)) * VoM / (m.z * we.z);
+    return std::exp(-0.5 * q) / (2.0 * kPi * std::sqrt(det)) * VoM * wi.z / m.z;  // (we.m)/(m.z we.z) * wi.z we.z
 }
 
 bool planeHit(const PinholeCamera& cam, double px, double py, dvec3& P, dvec3& we) {
@@ -187,7 +187,7 @@ void addBumpSources(ProgramSources& src, const brdf::Params& p, const std::strin
 std::string bumpEffect(const Scene& scene) {
     std::ostringstream s;
     s << "explicit micro-geometry: " << bumpSpec(scene) << ", " << scene.surface
-      << "; mirror facets, no masking: converges to f = D F / (4 cos_i cos_o) (geometry none) blurred by the sun";
+      << "; mirror facets, projected areas, implicit G = cos_i cos_o: converges to f = D F / 4 blurred by the sun";
     return s.str();
 }
 
