@@ -1,6 +1,5 @@
 // Issue 10 terms, in the //@block format of brdf.glsl (the assembler reads blocks from both files):
-// explicit micro-geometry (a bump field of mirror facets under a soft sun), the tabulated NDF and the
-// retroreflective lobe. GLSL twin of src/render/bumps_twin.cpp, src/brdf/ndf_table.hpp, src/brdf/retro.hpp.
+// explicit micro-geometry, a bump field of mirror facets under a soft sun. GLSL twin of src/render/bumps.cpp.
 
 // ---- Terms ----
 
@@ -53,46 +52,6 @@ float bumpGlint(vec3 we, vec3 wi, vec2 s, mat2 J, mat2 Sx, float sigma, out floa
     float det = C[0][0] * C[1][1] - C[0][1] * C[1][0];
     float q = (C[1][1] * d.x * d.x - (C[0][1] + C[1][0]) * d.x * d.y + C[0][0] * d.y * d.y) / det;
     return exp(-0.5 * q) / (2.0 * PI * sqrt(det)) * VoM * wi.z / m.z;  // (we.m)/(m.z we.z) * wi.z we.z
-}
-//@end
-
-//@block D_Tabulated needs common angleFromSinCosBlock
-// Tabulated (hand-painted) NDF: D(theta_h) linear between the table's nodes (theta_k, D_k), 0 beyond the
-// last node, normalized on the CPU so that int D (n.h) dw = 1. Nodes in a 1D RG32F texture, found by
-// bisection. Twin of brdf::D_Tabulated.
-float D_Tabulated(float NoH, float sin2h, sampler2D table, int count) {
-    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
-    float t = angleFromSinCos(sqrt(sin2h), NoH);
-    vec2 last = texelFetch(table, ivec2(count - 1, 0), 0).xy;
-    if (t >= last.x) return t == last.x ? last.y : 0.0;
-    int lo = 0, hi = count - 1;  // invariant: theta_lo <= t < theta_hi
-    while (hi - lo > 1) {
-        int mid = (lo + hi) / 2;
-        if (texelFetch(table, ivec2(mid, 0), 0).x <= t) lo = mid; else hi = mid;
-    }
-    vec2 a = texelFetch(table, ivec2(lo, 0), 0).xy, b = texelFetch(table, ivec2(hi, 0), 0).xy;
-    return a.y + (b.y - a.y) * ((t - a.x) / (b.x - a.x));
-}
-//@end
-
-//@block angleFromSinCosBlock
-// theta from (sin, cos) by three half-angle steps and the atan series (see D_Gaussian in brdf.glsl).
-float angleFromSinCosT(float s, float c) {
-    float t = s / (1.0 + c);
-    t = t / (1.0 + sqrt(1.0 + t * t));
-    t = t / (1.0 + sqrt(1.0 + t * t));
-    float t2 = t * t;
-    return 8.0 * t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 + t2 * (-1.0 / 7.0 + t2 * (1.0 / 9.0 - t2 / 11.0)))));
-}
-#define angleFromSinCos angleFromSinCosT
-//@end
-
-//@block Retro_Normalized needs common
-// Retroreflective lobe about the light direction: f = (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi): the
-// light comes back towards where it came from (street signs, cat's eyes). The Phong lobe turned round:
-// Phong 1975 about reflect(wi), here about wi itself.
-float Retro_Normalized(float oneMinusCosB, float n) {
-    return (n + 2.0) * (0.5 * INV_PI) * powCosStable(oneMinusCosB, n);
 }
 //@end
 
