@@ -56,7 +56,12 @@ void main() {
         fragColor = vec4(0.0);
         return;
     }
+#if defined(HILITE_BUMPS)
+    // Explicit micro-geometry: mirror facets of the bump field under a soft sun (shaders/micro.glsl).
+    vec3 rad = bumpRadiance(gl_FragCoord.xy, wi, E, uCamBack, uCamRight, uCamUp, uTanHalf, uViewport);
+#else
     vec3 rad = brdf(wi, we) * (E * wi.z);  // L = f(wi, wo) E cos(theta_i)
+#endif
 #if defined(HILITE_OUTPUT_MEASURE)
     float rhoOverSin;
     vec2 uv = chartCoords(we, rhoOverSin);

@@ -3,6 +3,7 @@
 // the NDF's normalization, and the Fresnel colour strip of a material (PNG). A table by default; with
 // --json one JSON object per line.
 
+#include "brdf/bihemispherical.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
@@ -133,7 +134,23 @@ int runAlbedo(const BrdfFlags& f) {
     const double phi = checkRange("--azimuth", f.scene.azimuth, -360, 360);
     if (!f.json)
         std::cout << "# " << p << " azimuth=" << phi << "\n#    theta_deg    albedo_r    albedo_g    albedo_b\n";
+    // The cosine-weighted average over every incidence (and azimuth): one number per channel, on every JSON
+    // row (so each line stays one self-contained object) and as the table's last line.
+    const dvec3 hh = brdf::bihemisphericalAlbedo(p);
+    if (f.json) {
+        for (double t : thetas) {
+            const dvec3 v = brdf::albedo(p, t, phi);
+            std::cout << nlohmann::ordered_json{{"theta_deg", t},
+                                                {"albedo", {v.x, v.y, v.z}},
+                                                {"bihemispherical_albedo", {hh.x, hh.y, hh.z}}}
+                             .dump()
+                      << "\n";
+        }
+        return 0;
+    }
     printRgbRows(f, thetas, "albedo", [&](double t) { return brdf::albedo(p, t, phi); });
+    std::cout << "# bihemispherical albedo (1/pi) int rho(wi) cos(theta_i) dwi:" << rowFormat(hh.x) << rowFormat(hh.y)
+              << rowFormat(hh.z) << "\n";
     return 0;
 }
 

@@ -3,7 +3,9 @@
 #include "cli/experiment.hpp"
 #include "core/error.hpp"
 #include "brdf/evaluate.hpp"
+#include "experiments/measure_bumps.hpp"
 #include "experiments/strip.hpp"
+#include "cli/micro_fields.hpp"
 #include "io/image_io.hpp"
 
 #include <algorithm>
@@ -19,7 +21,10 @@ const std::vector<std::string> kMeasureColumns = {
     "model", "incidence_deg", "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg",
     "centroid_u_deg", "centroid_v_deg", "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg",
     "area_deg2", "cos_incidence", "flags", "renders", "size", "fov_deg", "minor_pixels", "method",
-    "matched_parameter", "render_ms", "measure_ms"};
+    "matched_parameter", "render_ms", "measure_ms",
+    // issue 10, explicit micro-geometry (empty on flat surfaces): see cli/micro_fields.hpp
+    "log2_bump_period_px", "bump_samples_center", "analytic_aspect", "analytic_major_deg", "analytic_minor_deg",
+    "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms", "slope_ks"};
 const std::vector<std::string> kNotSceneParams = {"help", "scene", "output", "float", "exposure", "json",
                                                   "reference", "gl-backend", "incidence"};
 
@@ -146,7 +151,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
         throw InputError(m_exp.path + ": light.incidence: one angle per configuration (sweep it with [[sweep]])");
     for (auto& [k, v] : params.items()) row[k] = v;
     const auto m = f.reference ? experiments::measureReference(r.scene, r.setup.options)
-                               : experiments::measureGl(renderer(), r.scene, r.setup);
+                               : experiments::measureAny(renderer(), r.scene, r.setup);
     const nlohmann::json measured =
         measurementRow(r.scene, m, f, r.setup.width, r.setup.height, f.reference ? "reference" : "gl");
     for (auto& [k, v] : measured.items()) row[k] = v;
@@ -265,6 +270,7 @@ void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohma
         for (const auto& s : order)
             md << std::setprecision(3) << "| " << s << " | " << worst[s].first << " | " << worst[s].second << " |\n";
     }
+    md << microSummary(rows);  // issue 10: bump-field rows only
     for (const auto& n : notes) md << "\nNote: " << n << "\n";
     io::writeFileAtomic(dir + "/summary.md", md.str());
 }

@@ -44,7 +44,7 @@ void printScene(const CLI::App& app, std::ostream& os) {
         const bool quote = !isNumber(v) && v != "true" && v != "false";
         sections[section].push_back(key + " = " + (quote ? "\"" + v + "\"" : v));
     }
-    for (const char* s : {"material", "light", "camera", "measurement"}) {
+    for (const char* s : {"material", "light", "camera", "measurement", "surface"}) {
         os << "[" << s << "]\n";
         for (const auto& line : sections[s]) os << line << "\n";
         os << "\n";

@@ -6,7 +6,9 @@
 #include "cli/options.hpp"
 #include "cli/scene_file.hpp"
 #include "core/error.hpp"
+#include "experiments/measure_bumps.hpp"
 #include "experiments/measure_scene.hpp"
+#include "cli/micro_fields.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -50,6 +52,7 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["minor_pixels"] = std::isfinite(r.minor_pixels) ? nlohmann::json(r.minor_pixels) : nlohmann::json(nullptr);
     j["render_ms"] = m.render_ms;
     j["measure_ms"] = m.measure_ms;
+    if (s.surface.bumps) addMicroFields(j, s, m, f.threshold);  // issue 10: bump period, analytic twin
     return j;
 }
 
@@ -87,6 +90,8 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
         throw InputError("--boundary: unknown '" + f.boundary + "' (allowed: subpixel, pixel)");
     setup.options.subpixel = f.boundary == "subpixel";
     parseView(f.scene.view);  // checked, but a measurement always uses the measurement view
+    if (f.reference && scene.surface.bumps)
+        throw InputError("--reference: the CPU reference evaluates the analytic BRDF (drop --bumps explicit)");
     return r;
 }
 
@@ -107,7 +112,7 @@ int runMeasure(const MeasureFlags& f) {
     for (double angle : resolved.angles) {
         scene.light.incidenceDeg = angle;
         const experiments::Measurement m = f.reference ? experiments::measureReference(scene, setup.options)
-                                                       : experiments::measureGl(*renderer, scene, setup);
+                                                       : experiments::measureAny(*renderer, scene, setup);
         const nlohmann::json j = measurementRow(scene, m, f, setup.width, setup.height, f.reference ? "reference" : "gl");
         if (f.json) std::cout << j.dump() << "\n" << std::flush;
         else printTableRow(j);

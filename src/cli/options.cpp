@@ -3,6 +3,7 @@
 #include "brdf/materials.hpp"
 #include "brdf/spectral.hpp"
 #include "core/error.hpp"
+#include "render/bumps.hpp"
 #include "render/shader_source.hpp"
 
 #include <unistd.h>
@@ -108,6 +109,7 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
                    "eye distance from the origin (photo view; measurement view under a point light), in [1e-3, 1e6]")
         ->capture_default_str();
     app.add_option("--gl-backend", f.backend, "auto | osmesa | egl (default: $HILITE_GL_BACKEND, else auto)");
+    addSurfaceFlags(app, f.surface);
 }
 
 brdf::Params brdfParams(const SceneFlags& f) {
@@ -205,6 +207,12 @@ render::Scene sceneOf(const SceneFlags& f) {
     s.light.intensity = checkRange("--intensity", f.intensity, 0, 1e12);
     s.light.distance = checkRange("--light-distance", f.lightDistance, 1e-3, 1e6);
     s.eyeDistance = checkRange("--distance", f.distance, 1e-3, 1e6);
+    s.surface = surfaceOf(f.surface);
+    if (s.surface.bumps) {
+        render::bumpSpec(s);  // the material must have a slope distribution (InputError naming --bumps)
+        if (s.brdf.diffuse != brdf::Diffuse::None)
+            throw InputError("--bumps: the bump render is specular only (drop --diffuse)");
+    }
     return s;
 }
 

@@ -2,6 +2,7 @@
 // The scene flags shared by `render`, `measure` and later subcommands, their ranges, and their checks.
 // Every check throws InputError naming the flag, the allowed range and the value given.
 
+#include "cli/surface_flags.hpp"
 #include "core/camera.hpp"
 #include "gl/context.hpp"
 #include "render/scene.hpp"
@@ -43,6 +44,7 @@ struct SceneFlags {
     double lightDistance = 10.0;  ///< point light distance from the origin
     std::string backend = "";  ///< empty: $HILITE_GL_BACKEND or auto
     std::string sceneFile;     ///< --scene: already expanded into flags by cli::run
+    SurfaceFlags surface;      ///< [surface]: explicit micro-geometry (issue 10)
 };
 
 /// Adds the scene flags to a subcommand; `incidenceHelp` describes the accepted --incidence forms.

@@ -12,7 +12,7 @@ namespace hilite::cli {
 
 namespace {
 
-const std::vector<std::string> kSections = {"material", "light", "camera", "measurement", "output"};
+const std::vector<std::string> kSections = {"material", "light", "camera", "measurement", "output", "surface"};
 
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -150,7 +150,7 @@ SceneArg sceneArg(const std::string& name, const std::string& dottedKey, const t
     const std::string section = dottedKey.substr(0, dot);
     if (std::find(kSections.begin(), kSections.end(), section) == kSections.end())
         throw InputError(where(name, value) + ": " + dottedKey + ": unknown table '" + section +
-                         "' (allowed: material, light, camera, measurement, output)");
+                         "' (allowed: material, light, camera, measurement, output, surface)");
     std::vector<SceneArg> out;
     addKey(name, section, dottedKey.substr(dot + 1), value, app, out);
     if (out.empty()) return SceneArg{};
@@ -166,7 +166,7 @@ std::vector<SceneArg> sceneArgs(const toml::table& doc, const std::string& name,
             const std::string hint = didYouMean(section, kSections);
             throw InputError(where(name, node) + ": " + section + ": unknown table" +
                              (hint.empty() ? "" : " (did you mean '" + hint + "'?)") +
-                             "; allowed: material, light, camera, measurement, output");
+                             "; allowed: material, light, camera, measurement, output, surface");
         }
         for (const auto& [key, value] : *table) addKey(name, section, std::string(key.str()), value, app, out);
     }
@@ -191,6 +191,9 @@ void assignSections(CLI::App& app, size_t firstOption) {
     static const std::map<std::string, std::string> measurement = {
         {"threshold", "Measurement"}, {"min-pixels", "Measurement"}, {"boundary", "Measurement"},
         {"reference", "Measurement"}};
+    static const std::map<std::string, std::string> surface = {
+        {"bumps", "Surface"}, {"bump-period-px", "Surface"}, {"bump-seed", "Surface"}, {"bump-samples", "Surface"},
+        {"sun", "Surface"}};
     static const std::map<std::string, std::string> output = {
         {"output", "Output"}, {"float", "Output"}, {"exposure", "Output"}, {"json", "Output"}};
     const auto opts = app.get_options();
@@ -200,7 +203,7 @@ void assignSections(CLI::App& app, size_t firstOption) {
         const std::string n = opt->get_lnames().front();
         if (n == "help" || n == "scene") continue;
         std::string group = i >= firstOption ? "Material" : "";
-        for (const auto* m : {&light, &camera, &measurement, &output})
+        for (const auto* m : {&light, &camera, &measurement, &output, &surface})
             if (auto it = m->find(n); it != m->end()) group = it->second;
         if (!group.empty()) opt->group(group);
     }

@@ -1,6 +1,7 @@
 #include "render/renderer.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "render/bumps.hpp"
 #include "gl/check.hpp"
 
 #include <glad/gl.h>
@@ -22,9 +23,11 @@ std::ostream& operator<<(std::ostream& os, const Scene& s) {
 
 const char* toString(LightType t) { return t == LightType::Point ? "point" : "directional"; }
 
-ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir) {
+ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir,
+                              bool bumps) {
     ProgramSources src = assemble(p, out, shaderDir);
     if (light == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    if (bumps) addBumpSources(src, p, shaderDir);
     return src;
 }
 
@@ -32,6 +35,7 @@ std::vector<std::string> activeEffects(const Scene& scene) {
     std::vector<std::string> out = termBlocks(scene.brdf);
     out.push_back(scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
                                                        : "directional light (E cos)");
+    if (scene.surface.bumps) out.push_back(bumpEffect(scene));
     return out;
 }
 
@@ -104,15 +108,17 @@ Renderer::Renderer(gl::Context& /*current*/, std::string shaderDir)
 Renderer::~Renderer() {
     m_programs.clear();
     m_fbos.clear();
+    m_bumpTextures.reset();
     if (m_vbo) glDeleteBuffers(1, &m_vbo);
     if (m_vao) glDeleteVertexArrays(1, &m_vao);
 }
 
-const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightType light) {
-    const std::string key = effectKey(p, out) + (light == LightType::Point ? "+pointLight" : "");
+const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightType light, bool bumps) {
+    const std::string key =
+        effectKey(p, out) + (light == LightType::Point ? "+pointLight" : "") + (bumps ? "+bumps" : "");
     auto it = m_programs.find(key);
     if (it != m_programs.end()) return *it->second;
-    const ProgramSources src = programSources(p, out, light, m_shaderDir);
+    const ProgramSources src = programSources(p, out, light, m_shaderDir, bumps);
     auto prog = std::make_unique<gl::Program>(src.vertex, src.fragment);
     return *m_programs.emplace(key, std::move(prog)).first->second;
 }
@@ -151,7 +157,7 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
 }
 
 void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image) {
-    const gl::Program& prog = program(scene.brdf, out, scene.light.type);
+    const gl::Program& prog = program(scene.brdf, out, scene.light.type, scene.surface.bumps);
     gl::Framebuffer& fbo = framebuffer(camera.width, camera.height);
     fbo.bind();
     glDisable(GL_BLEND);
@@ -164,6 +170,10 @@ void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output ou
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     prog.use();
     setUniforms(prog, scene, camera);
+    if (scene.surface.bumps) {
+        if (!m_bumpTextures) m_bumpTextures = std::make_unique<BumpTextures>();
+        m_bumpTextures->bind(prog, scene, camera);
+    }
     glBindVertexArray(m_vao);
     glDrawArrays(GL_TRIANGLES, 0, 12);
     HILITE_GL_CHECK_WHAT("drawing the plane");

@@ -19,7 +19,8 @@ namespace hilite::render {
 
 /// Both stages of the program for an effect set: the assembled terms (assemble()) plus the light,
 /// which is an effect too (the point-light code of shade.frag compiles only when named).
-ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir);
+ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir,
+                              bool bumps = false);
 /// The effects a scene runs, in the program and in the CPU twin alike: the term blocks and the light.
 std::vector<std::string> activeEffects(const Scene& scene);
 
@@ -35,7 +36,8 @@ public:
     ImageF render(const Scene& scene, const PinholeCamera& camera, Output out);
 
     /// The program for an effect set (compiled on first use).
-    const gl::Program& program(const brdf::Params& p, Output out, LightType light = LightType::Directional);
+    const gl::Program& program(const brdf::Params& p, Output out, LightType light = LightType::Directional,
+                               bool bumps = false);
     size_t programCount() const { return m_programs.size(); }
     const std::string& shaderDir() const { return m_shaderDir; }
 
@@ -49,6 +51,7 @@ private:
     std::vector<std::unique_ptr<gl::Framebuffer>> m_fbos;
     gl::Framebuffer& framebuffer(int width, int height);
     unsigned int m_vao = 0, m_vbo = 0;
+    std::unique_ptr<class BumpTextures> m_bumpTextures;  ///< issue 10: the bump fields' textures
 };
 
 }  // namespace hilite::render

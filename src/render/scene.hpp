@@ -4,6 +4,7 @@
 #include "brdf/params.hpp"
 #include "core/camera.hpp"
 #include "core/chart.hpp"
+#include "render/surface.hpp"
 
 #include <iosfwd>
 
@@ -36,6 +37,7 @@ struct Scene {
     /// Distance of the eye (the measurement camera) from the origin, on the mirror direction. Only a
     /// point light makes the image depend on it: a distant light's radiance depends on direction alone.
     double eyeDistance = 10.0;
+    Surface surface;  ///< flat, or explicit micro-geometry (issue 10)
 };
 
 std::ostream& operator<<(std::ostream&, const Scene&);

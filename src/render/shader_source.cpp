@@ -92,6 +92,7 @@ std::vector<ShaderBlock> parseBlocks(const std::string& text, const std::string&
             if (words >> w && w == "needs")
                 while (words >> w) b.needs.push_back(w);
             b.firstLine = lineNo + 1;
+            b.file = file;
             blocks.push_back(b);
             inside = true;
         } else if (line.rfind("//@end", 0) == 0) {
@@ -343,14 +344,16 @@ std::string effectKey(const brdf::Params& p, Output out) {
 
 ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
     const std::string brdfFile = "shaders/brdf.glsl";
-    const auto blocks = parseBlocks(readFile(dir + "/brdf.glsl"), brdfFile);
+    auto blocks = parseBlocks(readFile(dir + "/brdf.glsl"), brdfFile);
+    const auto micro = parseBlocks(readFile(dir + "/micro.glsl"), "shaders/micro.glsl");  // issue 10 terms
+    blocks.insert(blocks.end(), micro.begin(), micro.end());
     // Dependency closure, dependencies first, each block once.
     std::vector<const ShaderBlock*> ordered;
     std::set<std::string> done;
     std::function<void(const std::string&)> add = [&](const std::string& name) {
         if (done.count(name)) return;
         auto it = std::find_if(blocks.begin(), blocks.end(), [&](const ShaderBlock& b) { return b.name == name; });
-        if (it == blocks.end()) throw SystemError(brdfFile + ": no block '" + name + "'");
+        if (it == blocks.end()) throw SystemError(brdfFile + " / shaders/micro.glsl: no block '" + name + "'");
         for (const auto& n : it->needs) add(n);
         done.insert(name);
         ordered.push_back(&*it);
@@ -364,7 +367,7 @@ ProgramSources assemble(const brdf::Params& p, Output out, const std::string& di
     config += out == Output::Measure ? "#define HILITE_OUTPUT_MEASURE 1\n" : "#define HILITE_OUTPUT_COLOR 1\n";
     if (const size_t n = spectralSamples(p)) config += "#define HILITE_SPECTRAL_SAMPLES " + std::to_string(n) + "\n";
     src.fragment.push_back({"<generated config>", 1, config});
-    for (const ShaderBlock* b : ordered) src.fragment.push_back({brdfFile, b->firstLine, b->text});
+    for (const ShaderBlock* b : ordered) src.fragment.push_back({b->file, b->firstLine, b->text});
     src.fragment.push_back({"<generated dispatch>", 1, dispatchSource(p)});
     src.fragment.push_back({"shaders/shade.frag", 1, readFile(dir + "/shade.frag")});
     return src;

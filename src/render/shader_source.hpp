@@ -24,6 +24,7 @@ std::string dataDirectory();
 /// One "//@block NAME needs A B" ... "//@end" section of a shader file.
 struct ShaderBlock {
     std::string name;
+    std::string file;  ///< "shaders/brdf.glsl" or "shaders/micro.glsl"
     std::vector<std::string> needs;
     int firstLine = 1;
     std::string text;

@@ -72,6 +72,11 @@ TEST_CASE("cli::brdf albedo --json: theta_deg and albedo per line") {
     REQUIRE(lines.size() == 2);
     CHECK(lines[1]["theta_deg"] == 60.0);
     CHECK(lines[1]["albedo"][2].get<double>() == doctest::Approx(0.6).epsilon(1e-6));
+    // Lambert's bihemispherical albedo is rho itself, on every row.
+    CHECK(lines[0]["bihemispherical_albedo"][0].get<double>() == doctest::Approx(0.2).epsilon(1e-6));
+    CHECK(lines[1]["bihemispherical_albedo"][1].get<double>() == doctest::Approx(0.4).epsilon(1e-6));
+    const auto table = hilite("brdf albedo --model none --diffuse lambert --albedo 0.3 --incidence 0");
+    CHECK(table.out.find("# bihemispherical albedo") != std::string::npos);
 }
 
 TEST_CASE("cli::brdf normalization --json: roughness, exponent, integral per line") {

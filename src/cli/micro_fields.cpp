@@ -1,0 +1,122 @@
+#include "cli/micro_fields.hpp"
+
+#include "experiments/measure_bumps.hpp"
+#include "micro/masking.hpp"
+#include "render/bumps.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace hilite::cli {
+
+namespace {
+
+const micro::SlopeStats& cachedStats(const micro::BumpSpec& spec) {
+    static std::map<micro::BumpSpec, micro::SlopeStats> cache;
+    auto it = cache.find(spec);
+    if (it == cache.end()) it = cache.emplace(spec, micro::slopeStats(micro::cachedBumpField(spec))).first;
+    return it->second;
+}
+
+double num(const nlohmann::json& r, const char* k) { return r.contains(k) && r[k].is_number() ? r[k].get<double>() : NAN; }
+
+}  // namespace
+
+void addMicroFields(nlohmann::json& row, const render::Scene& s, const experiments::Measurement& m, double threshold) {
+    const double period = s.surface.bumpPeriodPx;
+    row["log2_bump_period_px"] = std::log2(period);
+    // The centre pixel's footprint spans 1/period periods across and 1/(period cos) along the view.
+    row["bump_samples_center"] = render::bumpSamples(s.surface, 1.0 / (period * std::max(1e-3, m.center.z)));
+    measure::Options opt;
+    opt.threshold = threshold;
+    const experiments::Measurement a = experiments::measureReference(experiments::analyticScene(s), opt);
+    row["analytic_aspect"] = a.shape.aspect;
+    row["analytic_major_deg"] = a.shape.major_deg;
+    row["analytic_minor_deg"] = a.shape.minor_deg;
+    row["aspect_minus_analytic"] = m.shape.aspect - a.shape.aspect;
+    row["major_over_analytic"] = a.shape.major_deg > 0 ? m.shape.major_deg / a.shape.major_deg : NAN;
+    row["minor_over_analytic"] = a.shape.minor_deg > 0 ? m.shape.minor_deg / a.shape.minor_deg : NAN;
+    const micro::SlopeStats& st = cachedStats(render::bumpSpec(s));
+    row["slope_rms"] = std::hypot(st.rmsX, st.rmsY);
+    row["slope_ks"] = st.ks;
+    for (const char* k : {"major_over_analytic", "minor_over_analytic"})
+        if (!std::isfinite(row[k].get<double>())) row[k] = nullptr;
+}
+
+std::string microSummary(const std::vector<nlohmann::json>& rows) {
+    std::map<double, std::vector<const nlohmann::json*>> byIncidence;
+    for (const auto& r : rows)
+        if (r.value("bumps", std::string()) == "explicit" && r.contains("bump_period_px"))
+            byIncidence[num(r, "incidence_deg")].push_back(&r);
+    if (byIncidence.empty()) return "";
+    std::ostringstream md;
+    md << std::setprecision(4);
+    md << "## From bumps to BRDF\n\nEach facet is a mirror; the light is a soft sun (Gaussian, std `sun` deg). As the "
+          "bumps shrink, the render converges to f = D F G / (4 cos theta_i cos theta_o) with the implicit G = cos "
+          "theta_i cos theta_o (f = D F / 4: the shape set by the NDF alone; the render traces no masking, see below) "
+          "with the bumps' NDF, blurred by the sun; `analytic_*` is the CPU reference of that BRDF under a "
+          "point-like light.\n\n";
+    const nlohmann::json& any = *byIncidence.begin()->second.front();
+    for (const auto& [inc, list] : byIncidence) {
+        md << "### theta_i = " << inc << " deg\n\n| bump period (px) | patches/axis | aspect | analytic | semi-major "
+           << "(deg) | analytic | semi-minor (deg) | analytic | flags |\n|---|---|---|---|---|---|---|---|---|\n";
+        const nlohmann::json* smallest = nullptr;
+        for (const nlohmann::json* r : list) {
+            std::string flags;
+            for (const auto& fl : (*r)["flags"]) flags += (flags.empty() ? "" : ", ") + fl.get<std::string>();
+            md << "| " << num(*r, "bump_period_px") << " | " << num(*r, "bump_samples_center") << " | "
+               << num(*r, "aspect") << " | " << num(*r, "analytic_aspect") << " | " << num(*r, "major_deg") << " | "
+               << num(*r, "analytic_major_deg") << " | " << num(*r, "minor_deg") << " | "
+               << num(*r, "analytic_minor_deg") << " | " << flags << " |\n";
+            if (!smallest || num(*r, "bump_period_px") < num(*smallest, "bump_period_px")) smallest = r;
+        }
+        const double da = num(*smallest, "aspect_minus_analytic"), ma = num(*smallest, "major_over_analytic") - 1,
+                     mi = num(*smallest, "minor_over_analytic") - 1;
+        const bool ok = std::abs(da) <= 0.02 && std::abs(ma) <= 0.05 && std::abs(mi) <= 0.05;
+        md << "\nSmallest period (" << num(*smallest, "bump_period_px") << " px): aspect differs from the analytic "
+           << "BRDF's by " << std::showpos << da << ", semi-major by " << 100 * ma << "%, semi-minor by " << 100 * mi
+           << "%" << std::noshowpos << " (" << (ok ? "within" : "outside") << " 0.02 and 5%).\n\n";
+    }
+    // The realised slopes of the field, against the target NDF.
+    micro::BumpSpec spec;
+    spec.kind = any.value("model", std::string()) == "ggx" ? micro::BumpKind::GGX : micro::BumpKind::Beckmann;
+    spec.roughness = num(any, "roughness");
+    spec.seed = uint64_t(num(any, "bump_seed"));
+    md << "### The realised slopes\n\n" << spec << ": " << cachedStats(spec)
+       << " (Beckmann target: rms roughness/sqrt(2) = " << spec.roughness / std::sqrt(2.0)
+       << " per axis, shares 0.125; KS is the largest gap between the realised and target radial CDFs over "
+       << 1024 * 1024 << " texels).\n\n";
+    // Masking and shadowing traced against a Beckmann height field of the same seed.
+    md << "### Shadowing and masking from geometry\n\nRays traced against the height field (CPU, quarter-texel "
+          "steps), 40000 random facets per angle, +- one standard error. G1 is the masking of all facets; since every "
+          "line of sight meets a height field once, it must equal 1/(1 + Lambda) of the realised slopes (`realised`) "
+          "exactly: a check of the tracer. G1(h) and G2(h) are those of the highlight's facets (normal within "
+          "roughness/2 of the half vector h = n of the specular pair wi = mirror of wo), which Smith's G assumes equal "
+          "to the aggregate: G1(h) = G1, G2 = 1/(1 + 2 Lambda) (height-correlated).\n\n";
+    for (double m : {spec.roughness, 0.3}) {
+        micro::BumpSpec b = spec;
+        b.kind = micro::BumpKind::Beckmann;
+        b.roughness = m;
+        const auto rowsM = micro::traceMasking(micro::cachedBumpField(b), {60, 70, 80, 85, 88}, 40000, 7);
+        md << "Beckmann m = " << m << ":\n\n| theta (deg) | G1 traced | realised | Smith | G1(h) traced | G2(h) traced | "
+           << "Smith G2 (height-correlated) | separable G1^2 |\n|---|---|---|---|---|---|---|---|\n";
+        for (const auto& r : rowsM)
+            md << "| " << r.thetaDeg << " | " << r.g1 << " +- " << r.g1Err << " | " << r.g1Realized << " | " << r.g1Smith
+               << " | " << r.g1h << " +- " << r.g1hErr << " | " << r.g2 << " +- " << r.g2Err << " | " << r.g2Smith
+               << " | " << r.g2Uncorrelated << " |\n";
+        md << "\n";
+    }
+    md << "Reading the masking tables: the traced G1 agrees with 1/(1 + Lambda) of the realised slopes, and with "
+          "Smith's, to within about two standard errors (the residual, a slight excess at 85-88 deg, is the tracer's: "
+          "quarter-texel steps on bilinear heights miss the thinnest grazing occluders). The highlight's own facets "
+          "are less visible than the aggregate at grazing (G1(h) < G1): flat facets are not tilted towards the eye, "
+          "and tilted-towards facets are the more visible ones, a slope-visibility correlation Smith's model leaves "
+          "out. G2(h) follows the height-correlated Smith form, not the separable product: a facet high enough to "
+          "be seen is likely high enough to be lit. Where G2(h) falls below Smith by more than its error, it is by "
+          "about the G1(h)/G1 deficit.\n\n";
+    return md.str();
+}
+
+}  // namespace hilite::cli

@@ -1,0 +1,24 @@
+#pragma once
+// The row fields of a bump-field measurement (issue 10), and the microgeometry summary section.
+
+#include "experiments/measure_scene.hpp"
+#include "render/scene.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace hilite::cli {
+
+/// log2_bump_period_px, bump_samples_center, the analytic twin's shape (analytic_aspect, _major_deg,
+/// _minor_deg: the CPU reference of the same NDF and Fresnel with implicit G under a point-like light), the
+/// differences, and the realised slope statistics (slope_rms, slope_ks).
+void addMicroFields(nlohmann::json& row, const render::Scene& s, const experiments::Measurement& m, double threshold);
+
+/// The summary section of an experiment with bump rows (empty text when there are none): convergence per
+/// incidence, the smallest period against the analytic BRDF, the realised slopes, and masking traced against
+/// the height field beside Smith's G.
+std::string microSummary(const std::vector<nlohmann::json>& rows);
+
+}  // namespace hilite::cli

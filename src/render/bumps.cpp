@@ -1,0 +1,194 @@
+#include "render/bumps.hpp"
+
+#include "brdf/evaluate.hpp"
+#include "core/error.hpp"
+#include "render/shader_source.hpp"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+namespace hilite::render {
+
+std::ostream& operator<<(std::ostream& os, const Surface& s) {
+    if (!s.bumps) return os << "surface=flat";
+    os << "surface=bumps bump_period_px=" << s.bumpPeriodPx << " bump_seed=" << s.seed << " sun_deg=" << s.sunDeg
+       << " bump_samples=";
+    if (s.samples > 0) return os << s.samples;
+    return os << "auto(" << s.samplesPerPeriod << "/period, <=" << kMaxBumpSamples << ")";
+}
+
+micro::BumpSpec bumpSpec(const Scene& scene) {
+    micro::BumpSpec spec;
+    const brdf::Params& p = scene.brdf;
+    if (p.model == brdf::Model::Beckmann) spec.kind = micro::BumpKind::Beckmann;
+    else if (p.model == brdf::Model::GGX) spec.kind = micro::BumpKind::GGX;
+    else
+        throw InputError(std::string("--bumps: explicit micro-geometry realises a beckmann or ggx NDF (got --model ") +
+                         brdf::toString(p.model) + ")");
+    if (p.anisotropic()) throw InputError("--bumps: the bump fields are isotropic (drop --roughness-y)");
+    spec.roughness = p.roughness;
+    spec.seed = scene.surface.seed;
+    spec.texels = scene.surface.texels;
+    spec.bumpsPerTile = scene.surface.bumpsPerTile;
+    return spec;
+}
+
+double bumpTileWorld(const Scene& scene, const PinholeCamera& cam) {
+    // Distance along the centre ray to the plane (the origin's distance if the ray misses it).
+    const dvec3 d = cam.ray(0.5 * cam.width, 0.5 * cam.height);
+    const double t = d.z < 0.0 ? -cam.position.z / d.z : glm::length(cam.position);
+    const double pixel = t * 2.0 * cam.tanHalfX / cam.width;
+    return scene.surface.bumpPeriodPx * pixel * scene.surface.bumpsPerTile;
+}
+
+int bumpSamples(const Surface& s, double periods) {
+    if (s.samples > 0) return s.samples;
+    return std::clamp(int(std::ceil(s.samplesPerPeriod * periods)), 1, kMaxBumpSamples);
+}
+
+BumpTextures::~BumpTextures() {
+    for (auto& [spec, t] : m_textures) {
+        glDeleteTextures(1, &t.first);
+        glDeleteTextures(1, &t.second);
+    }
+}
+
+void BumpTextures::bind(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) {
+    const micro::BumpSpec spec = bumpSpec(scene);
+    auto it = m_textures.find(spec);
+    if (it == m_textures.end()) {
+        const micro::BumpField& f = micro::cachedBumpField(spec);
+        unsigned ids[2];
+        glGenTextures(2, ids);
+        for (int k = 0; k < 2; ++k) {
+            glBindTexture(GL_TEXTURE_2D, ids[k]);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, f.n, f.n, 0, GL_RGBA, GL_FLOAT,
+                         (k == 0 ? f.tex0 : f.tex1).data());
+        }
+        it = m_textures.emplace(spec, std::make_pair(ids[0], ids[1])).first;
+    }
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, it->second.first);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, it->second.second);
+    glActiveTexture(GL_TEXTURE0);
+    glUseProgram(prog.id());
+    glUniform1i(prog.uniform("uBump0"), 1);
+    glUniform1i(prog.uniform("uBump1"), 2);
+    const double tile = bumpTileWorld(scene, cam);
+    prog.set("uBumpTexels", float(spec.texels));
+    prog.set("uTileWorld", float(tile));
+    prog.set("uPeriodWorld", float(tile / spec.bumpsPerTile));
+    prog.set("uBumpEye", float(cam.position.x), float(cam.position.y), float(cam.position.z));
+    glUniform1i(prog.uniform("uBumpSamples"), scene.surface.samples);
+    glUniform1i(prog.uniform("uBumpMaxSamples"), kMaxBumpSamples);
+    prog.set("uSamplesPerPeriod", float(scene.surface.samplesPerPeriod));
+    prog.set("uSunSigma", float(deg2rad(scene.surface.sunDeg)));
+}
+
+namespace {
+
+/// Twin of bumpGlint() in shaders/micro.glsl: one Gaussian mirror patch under the soft sun.
+double bumpGlint(const dvec3& we, const dvec3& wi, const dvec2& s, const double J[4], const double Sx[3],
+                 double sigma, double& VoM) {
+    const dvec3 nU(-s.x, -s.y, 1.0);
+    const double len = glm::length(nU);
+    const dvec3 m = nU / len;
+    VoM = glm::dot(we, m);
+    if (VoM <= 0.0) return 0.0;  // the patch faces away from the eye
+    const dvec3 r0 = 2.0 * VoM * m - we;
+    if (glm::dot(r0, wi) <= 0.0) return 0.0;  // reflected away from the sun's hemisphere
+    const dvec3 t1 = std::abs(wi.z) < 0.999 ? glm::normalize(dvec3(-wi.y, wi.x, 0.0)) : dvec3(1, 0, 0);
+    const dvec3 t2 = glm::cross(wi, t1);
+    const dvec3 dmx = (dvec3(-1, 0, 0) + m * m.x) / len, dmy = (dvec3(0, -1, 0) + m * m.y) / len;
+    const dvec3 drx = 2.0 * (m * glm::dot(we, dmx) + VoM * dmx), dry = 2.0 * (m * glm::dot(we, dmy) + VoM * dmy);
+    // A = d(t.r)/ds * ds/dx (J row-major: J[0] = ds_x/dx, J[1] = ds_x/dy, J[2] = ds_y/dx, J[3] = ds_y/dy)
+    const double B[4] = {glm::dot(t1, drx), glm::dot(t1, dry), glm::dot(t2, drx), glm::dot(t2, dry)};
+    const double A[4] = {B[0] * J[0] + B[1] * J[2], B[0] * J[1] + B[1] * J[3], B[2] * J[0] + B[3] * J[2],
+                         B[2] * J[1] + B[3] * J[3]};
+    // C = A Sx A^T + sigma^2 I, Sx = [[Sx0, Sx1], [Sx1, Sx2]]
+    const double AS[4] = {A[0] * Sx[0] + A[1] * Sx[1], A[0] * Sx[1] + A[1] * Sx[2], A[2] * Sx[0] + A[3] * Sx[1],
+                          A[2] * Sx[1] + A[3] * Sx[2]};
+    const double c00 = AS[0] * A[0] + AS[1] * A[1] + sigma * sigma, c01 = AS[0] * A[2] + AS[1] * A[3];
+    const double c11 = AS[2] * A[2] + AS[3] * A[3] + sigma * sigma;
+    const double dx = glm::dot(t1, r0), dy = glm::dot(t2, r0), det = c00 * c11 - c01 * c01;
+    const double q = (c11 * dx * dx - 2.0 * c01 * dx * dy + c00 * dy * dy) / det;
+    return std::exp(-0.5 * q) / (2.0 * kPi * std::sqrt(det)) * VoM * wi.z / m.z;  // (we.m)/(m.z we.z) * wi.z we.z
+}
+
+bool planeHit(const PinholeCamera& cam, double px, double py, dvec3& P, dvec3& we) {
+    const dvec3 d = cam.ray(px, py);
+    we = -d;
+    if (d.z >= 0.0) return false;  // the ray never meets the plane
+    P = cam.position + (-cam.position.z / d.z) * d;
+    return true;
+}
+
+}  // namespace
+
+dvec3 bumpPixelRadiance(const Scene& scene, const PinholeCamera& cam, int ix, int iy) {
+    const micro::BumpSpec spec = bumpSpec(scene);
+    const micro::BumpField& f = micro::cachedBumpField(spec);
+    const double tile = bumpTileWorld(scene, cam), period = tile / spec.bumpsPerTile;
+    const double fx = ix + 0.5, fy = iy + 0.5;
+    dvec3 P0, Px, Py, w;
+    if (!planeHit(cam, fx, fy, P0, w)) return dvec3(0.0);
+    const bool okx = planeHit(cam, fx + 1, fy, Px, w), oky = planeHit(cam, fx, fy + 1, Py, w);
+    const dvec2 ax = okx ? dvec2(Px - P0) : dvec2(0.0), ay = oky ? dvec2(Py - P0) : dvec2(0.0);
+    const int S = okx && oky ? bumpSamples(scene.surface, std::max(glm::length(ax), glm::length(ay)) / period)
+                 : scene.surface.samples > 0 ? scene.surface.samples
+                                             : kMaxBumpSamples;
+    const dvec2 a = ax / (S * tile), b = ay / (S * tile);
+    const double Sx[3] = {(a.x * a.x + b.x * b.x) / 12.0, (a.x * a.y + b.x * b.y) / 12.0,
+                          (a.y * a.y + b.y * b.y) / 12.0};
+    const dvec3 wi = scene.light.direction();
+    const double sigma = deg2rad(scene.surface.sunDeg);
+    dvec3 sum(0.0);
+    for (int j = 0; j < S; ++j)
+        for (int i = 0; i < S; ++i) {
+            dvec3 P, we;
+            if (!planeHit(cam, fx - 0.5 + (i + 0.5) / S, fy - 0.5 + (j + 0.5) / S, P, we)) continue;
+            const micro::BumpSample bs = f.sample(P.x / tile, P.y / tile);
+            const double J[4] = {bs.Jxx, bs.Jxy, bs.Jyx, bs.Jyy};
+            double VoM = 0;
+            const double g = bumpGlint(we, wi, bs.s, J, Sx, sigma, VoM);
+            if (g > 0.0) sum += g * brdf::fresnel(scene.brdf, VoM);
+        }
+    return sum * (scene.light.irradiance / (S * S));
+}
+
+}  // namespace hilite::render
+
+namespace hilite::render {
+
+void addBumpSources(ProgramSources& src, const brdf::Params& p, const std::string& shaderDir) {
+    std::ifstream in(shaderDir + "/micro.glsl", std::ios::binary);
+    if (!in) throw SystemError("cannot read shader file " + shaderDir + "/micro.glsl");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    const auto blocks = parseBlocks(ss.str(), "shaders/micro.glsl");
+    src.fragment.front().text += "#define HILITE_BUMPS 1\n";
+    // The dispatch is the second-last piece (shade.frag is last): the bump blocks go right before it.
+    auto at = src.fragment.end() - 2;
+    for (const char* name : {"BumpGlint", "BumpRadiance"})
+        for (const auto& b : blocks)
+            if (b.name == name) at = src.fragment.insert(at, gl::SourcePiece{b.file, b.firstLine, b.text}) + 1;
+    src.fragment[src.fragment.size() - 2].text +=
+        p.fresnel != brdf::Fresnel::None ? "vec3 bumpFresnel(float VoM) { return fresnel(VoM); }\n"
+                                         : "vec3 bumpFresnel(float VoM) { return vec3(1.0); }  // no Fresnel term\n";
+}
+
+std::string bumpEffect(const Scene& scene) {
+    std::ostringstream s;
+    s << "explicit micro-geometry: " << bumpSpec(scene) << ", " << scene.surface
+      << "; mirror facets, projected areas, implicit G = cos_i cos_o: converges to f = D F / 4 blurred by the sun";
+    return s.str();
+}
+
+}  // namespace hilite::render
