@@ -186,7 +186,8 @@ void assignSections(CLI::App& app, size_t firstOption) {
         {"distance", "Camera"}, {"gl-backend", "Camera"}};
     static const std::map<std::string, std::string> measurement = {
         {"threshold", "Measurement"}, {"min-pixels", "Measurement"}, {"boundary", "Measurement"},
-        {"reference", "Measurement"}};
+        {"reference", "Measurement"}, {"supersample", "Measurement"}, {"renderer", "Measurement"}, {"crop", "Measurement"},
+        {"tolerance", "Measurement"}};
     static const std::map<std::string, std::string> output = {
         {"output", "Output"}, {"float", "Output"}, {"exposure", "Output"}, {"json", "Output"}};
     const auto opts = app.get_options();

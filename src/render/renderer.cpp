@@ -49,8 +49,10 @@ const float kPlane[] = {
 };
 
 /// View-projection of a pinhole camera. Near/far bound depth only: GL_DEPTH_CLAMP keeps the plane's
-/// far part (at infinity) instead of clipping it.
-glm::mat4 viewProjection(const PinholeCamera& c) {
+/// far part (at infinity) instead of clipping it. `jitter` (pixels) shifts the image by -jitter, so that
+/// each pixel centre rasterizes what lies at centre + jitter: coverage (a pixel is drawn only where its
+/// sample sees the plane, e.g. at the horizon) then agrees with the shader's jittered ray.
+glm::mat4 viewProjection(const PinholeCamera& c, dvec2 jitter) {
     const double distance = glm::length(c.position);
     const double nearZ = 1e-3 * distance, farZ = 1e3 * distance;
     glm::dmat4 view(1.0);
@@ -68,6 +70,9 @@ glm::mat4 viewProjection(const PinholeCamera& c) {
     proj[2][2] = -(farZ + nearZ) / (farZ - nearZ);
     proj[2][3] = -1.0;
     proj[3][2] = -2.0 * farZ * nearZ / (farZ - nearZ);
+    // ndc += delta needs clip += delta * w_clip = delta * (-z_view): proj[2][.] -= delta, delta = -2 jitter / size.
+    proj[2][0] += 2.0 * jitter.x / c.width;
+    proj[2][1] += 2.0 * jitter.y / c.height;
     return glm::mat4(proj * view);
 }
 
@@ -107,8 +112,9 @@ const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightTyp
     return *m_programs.emplace(key, std::move(prog)).first->second;
 }
 
-void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) const {
-    prog.setMat4("uViewProj", glm::value_ptr(viewProjection(cam)));
+void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam, dvec2 jitter) const {
+    prog.setMat4("uViewProj", glm::value_ptr(viewProjection(cam, jitter)));
+    prog.set("uJitter", float(jitter.x), float(jitter.y));
     set3(prog, "uCamBack", cam.back);
     set3(prog, "uCamRight", cam.right);
     set3(prog, "uCamUp", cam.up);
@@ -164,8 +170,7 @@ void Renderer::draw(const Scene& scene, const PinholeCamera& camera, Output out,
     glClearColor(0.f, 0.f, 0.f, 0.f);
     glClear(GL_COLOR_BUFFER_BIT);
     prog.use();
-    setUniforms(prog, scene, camera);
-    prog.set("uJitter", float(jitter.x), float(jitter.y));
+    setUniforms(prog, scene, camera, jitter);
     glBindVertexArray(m_vao);
     glDrawArrays(GL_TRIANGLES, 0, 12);
     HILITE_GL_CHECK_WHAT("drawing the plane");

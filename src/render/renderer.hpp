@@ -44,7 +44,7 @@ public:
     const std::string& shaderDir() const { return m_shaderDir; }
 
 private:
-    void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) const;
+    void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam, dvec2 jitter) const;
 
     std::string m_shaderDir;
     std::map<std::string, std::unique_ptr<gl::Program>> m_programs;
