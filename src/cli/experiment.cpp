@@ -75,6 +75,9 @@ std::vector<SweepCase> parseCases(const toml::array& cases, const std::string& f
             if (o.name == sc.name) throw InputError(line(file, c) + ": sweep " + key + ": two cases named '" + sc.name + "'");
         const std::string what = "sweep " + key + " case '" + sc.name + "'";
         sc.tags = nlohmann::json::object();
+        for (const char* k : {"tags", "reference"})  // both are tables; anything else would be dropped silently
+            if ((*t)[k] && !(*t)[k].is_table())
+                throw InputError(line(file, *(*t)[k].node()) + ": " + what + ": " + k + " = { ... } (a table)");
         if (const auto* tags = (*t)["tags"].as_table())
             for (const auto& [k, v] : *tags) sc.tags[std::string(k.str())] = scalar(v, line(file, v) + ": " + what);
         if (const auto* ref = (*t)["reference"].as_table()) sc.reference = caseArgs(*ref, file, what + " reference", app, {});
