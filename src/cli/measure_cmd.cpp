@@ -95,6 +95,9 @@ void printToleranceLine(const nlohmann::json& j) {
                 j["time_ms"].get<double>());
 }
 
+/// The issue-7 knobs: --supersample, --renderer, --crop, --tolerance.
+void resolveAccuracyFlags(const MeasureFlags& f, ResolvedMeasure& r);
+
 }  // namespace
 
 ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
@@ -116,6 +119,14 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
         throw InputError("--boundary: unknown '" + f.boundary + "' (allowed: subpixel, pixel)");
     setup.options.subpixel = f.boundary == "subpixel";
     if (f.scene.view != "measure") throw InputError("--view: measure always uses the measurement view");
+    resolveAccuracyFlags(f, r);
+    return r;
+}
+
+namespace {
+
+void resolveAccuracyFlags(const MeasureFlags& f, ResolvedMeasure& r) {
+    experiments::MeasureSetup& setup = r.setup;
     if (f.supersample < 1 || f.supersample > experiments::kMaxSupersample)
         throw InputError("--supersample: must be a whole number in [1, " + std::to_string(experiments::kMaxSupersample) +
                          "] (got " + std::to_string(f.supersample) + ")");
@@ -129,8 +140,9 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
         r.tolerance = checkRange("--tolerance", parseNumberFlag("--tolerance", f.tolerance), kMinTolerance, kMaxTolerance);
         if (f.reference) throw InputError("--tolerance: not with --reference (the reference has no settings to choose)");
     }
-    return r;
 }
+
+}  // namespace
 
 nlohmann::json measureRow(render::Renderer* renderer, const ResolvedMeasure& r, const MeasureFlags& f) {
     const render::Scene& scene = r.scene;
@@ -162,8 +174,6 @@ int runMeasure(const MeasureFlags& f) {
     ResolvedMeasure resolved = resolveMeasure(f);
     render::Scene& scene = resolved.scene;
     const experiments::MeasureSetup& setup = resolved.setup;
-
-
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<render::Renderer> renderer;
     if (!f.reference && !setup.cpu) {
@@ -203,9 +213,10 @@ void addMeasureFlags(CLI::App& app, MeasureFlags& flags) {
                    "numbers, less time) | off: the whole frame")
         ->capture_default_str();
     app.add_option("--tolerance", f->tolerance,
-                   "E in [1e-5, 0.1]: choose the cheapest size/boundary/supersampling predicted to reach aspect error E, "
-                   "check it against a finer setting, report settings, error_estimate and time (needs --json; "
-                   "--size, --boundary, --supersample are chosen, not read)");
+                   "E in [1e-5, 0.1]: choose the cheapest settings (size, sub-pixel boundary) predicted to reach aspect "
+                   "error E, check them against the next finer size, report settings, error_estimate and time_ms "
+                   "(--json fields; a table adds a line); --size, --boundary, --supersample, --fov are chosen, not "
+                   "read");
     app.add_flag("--json", f->json, "one JSON object per line instead of a table");
     app.add_flag("--reference", f->reference, "use the CPU double-precision reference instead of GL");
     assignSections(app, 0);
