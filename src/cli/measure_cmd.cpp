@@ -85,6 +85,7 @@ void toleranceFields(nlohmann::json& j, const experiments::ToleranceResult& r) {
                   {"aspect", r.check.shape.aspect}};
     j["rounds"] = r.rounds;
     j["time_ms"] = r.total_ms;
+    j["startup_ms"] = r.startup_ms;
 }
 
 void printToleranceLine(const nlohmann::json& j) {

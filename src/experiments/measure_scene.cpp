@@ -96,21 +96,27 @@ measure::LobeFunction twinLobe(const render::Scene& scene) {
     return f;
 }
 
-double twinHalfWidth(const render::Scene& scene, double threshold) {
+std::array<double, 4> twinRadii(const render::Scene& scene, double threshold) {
     const measure::LobeFunction f = twinLobe(scene);
     const double l0 = f.lobe(0, 0);
-    if (!(l0 > 0)) return deg2rad(30.0);
-    double widest = 0;
-    for (auto [du, dv] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}}) {
+    if (!(l0 > 0)) return {deg2rad(30.0), deg2rad(30.0), deg2rad(30.0), deg2rad(30.0)};
+    std::array<double, 4> radii{};
+    const double du[4] = {1, -1, 0, 0}, dv[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
         double lo = 0, hi = 1e-9;
-        while (hi < kPi / 2 && f.lobe(hi * du, hi * dv) >= threshold * l0) lo = hi, hi *= 2;
+        while (hi < kPi / 2 && f.lobe(hi * du[k], hi * dv[k]) >= threshold * l0) lo = hi, hi *= 2;
         for (int i = 0; i < 60; ++i) {
             const double mid = 0.5 * (lo + hi);
-            (f.lobe(mid * du, mid * dv) >= threshold * l0 ? lo : hi) = mid;
+            (f.lobe(mid * du[k], mid * dv[k]) >= threshold * l0 ? lo : hi) = mid;
         }
-        widest = std::max(widest, hi);
+        radii[size_t(k)] = hi;
     }
-    return widest;
+    return radii;
+}
+
+double twinHalfWidth(const render::Scene& scene, double threshold) {
+    const auto r = twinRadii(scene, threshold);
+    return *std::max_element(r.begin(), r.end());
 }
 
 namespace {

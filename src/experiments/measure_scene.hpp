@@ -7,6 +7,7 @@
 #include "render/renderer.hpp"
 #include "render/scene.hpp"
 
+#include <array>
 #include <iosfwd>
 #include <string>
 
@@ -46,8 +47,10 @@ struct Measurement {
 /// The lobe of a scene as a function of chart coordinates, evaluated by the double twin.
 measure::LobeFunction twinLobe(const render::Scene& scene);
 
-/// Angular radius (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
-/// direction, searched along +-u and +-v; a seed for framing and for the reference's search disc.
+/// Angular radii (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
+/// direction, along +u, -u, +v, -v (bisection to 1e-18 of the bracket; the horizon ends a ray too).
+std::array<double, 4> twinRadii(const render::Scene& scene, double threshold);
+/// The largest of twinRadii: a seed for framing and for the reference's search disc.
 double twinHalfWidth(const render::Scene& scene, double threshold);
 
 /// Measures the highlight in GL with fixed or automatic framing.

@@ -76,7 +76,9 @@ bool plotPareto(const std::string& dir, const ParetoSpec& spec, const std::vecto
         if (p.front) onFront.push_back(&p);
     }
     std::sort(onFront.begin(), onFront.end(), [](const ParetoPoint* a, const ParetoPoint* b) { return a->time < b->time; });
-    for (const auto* p : onFront) front << std::setprecision(10) << p->time << " " << std::max(p->error, floor) << "\n";
+    for (const auto* p : onFront)
+        front << std::setprecision(10) << p->time << " " << std::max(p->error, floor) << " "
+              << nlohmann::json(p->setting).dump() << "\n";
     std::string data;
     for (const auto& k : order) data += "# " + k + "\n" + blocks[k].str() + "\n\n";
     data += "# Pareto front\n" + front.str() + "\n\n";
@@ -90,7 +92,8 @@ bool plotPareto(const std::string& dir, const ParetoSpec& spec, const std::vecto
        << "set title " << nlohmann::json(spec.title).dump() << "\n"
        << "set xlabel " << nlohmann::json(spec.time + " (mean over the scenes; log)").dump() << "\n"
        << "set ylabel " << nlohmann::json(spec.error + " (worst over the scenes; log)").dump() << "\n"
-       << "set logscale xy\nset format y '10^{%L}'\nset grid\nset key outside right top box opaque\n";
+       << "set termoption noenhanced\n"  // keeps the underscores of column names
+       << "set logscale xy\nset format y '1e%L'\nset grid\nset key outside right top box opaque\n";
     for (double t : spec.targets) gp << "set arrow from graph 0, first " << t << " to graph 1, first " << t << " nohead dt 3 lc rgb 'gray40'\n";
     gp << "plot " << quoteShell(dat) << " index " << order.size()
        << " using 1:2 with steps lw 3 lc rgb '#80000000' title 'Pareto front'";
@@ -98,7 +101,8 @@ bool plotPareto(const std::string& dir, const ParetoSpec& spec, const std::vecto
         gp << ", " << quoteShell(dat) << " index " << i << " using 1:2 with points pt " << (5 + 2 * int(i % 4))
            << " ps 1.4 title " << nlohmann::json(order[i].empty() ? "settings" : order[i]).dump();
     gp << ", " << quoteShell(dat) << " index " << order.size()
-       << " using 1:2 with points pt 6 ps 2.6 lw 2 lc rgb 'black' title 'on the front'\n";
+       << " using 1:2 with points pt 6 ps 2.6 lw 2 lc rgb 'black' title 'on the front', " << quoteShell(dat)
+       << " index " << order.size() << " using 1:2:3 with labels left offset 1.2,0.6 font ',8' notitle\n";
     return runGnuplot(dir, spec.file, gp.str(), why);
 }
 

@@ -20,7 +20,8 @@ struct ToleranceResult {
     MeasureSetup checkSetup;
     int rounds = 0;            ///< (measure, check) rounds taken
     bool met = false;          ///< errorEstimate <= tolerance
-    double total_ms = 0;       ///< wall time of everything, prediction included
+    double total_ms = 0;       ///< wall time of choosing, measuring and checking (prediction included)
+    double startup_ms = 0;     ///< compiling the scene's program first, when this process had not yet
 };
 
 /// Chooses, measures, checks; escalates when the check finds the error above E (at most a few rounds,
