@@ -1,14 +1,25 @@
-// Speed of the measurement pipeline (Google Benchmark; tests never time things).
-//   hilite_bench --benchmark_filter=Measure   one auto-framed measurement at 512x512 (target <= 2 ms)
+// Speed of the measurement pipeline (Google Benchmark; tests never time things). Wall-clock times
+// (UseRealTime): llvmpipe renders on its own threads. On a shared machine run with
+// --benchmark_repetitions=5 --benchmark_report_aggregates_only=true and read the medians.
+//   --benchmark_filter=MeasureAutoFramed   one auto-framed measurement at 512x512 (target <= 2 ms)
+//   --benchmark_filter='Draw|Readback|Analysis'   the pipeline's stages, 128^2 .. 2048^2
+//   --benchmark_filter=EffectSet            shading cost of each effect set at 512^2
+//   --benchmark_filter=Sweep                configurations per second (the 90 x 4 sweep's measurements)
+//   --benchmark_filter=View                 GL float path against the CPU double path, same pixels, all cores
 
+#include "brdf/spectral.hpp"
 #include "experiments/measure_scene.hpp"
+#include "experiments/tolerance.hpp"
 #include "gl/context.hpp"
+#include "render/cpu_view.hpp"
 #include "render/renderer.hpp"
+#include "render/shader_source.hpp"
 
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <memory>
+#include <thread>
 
 using namespace hilite;
 
@@ -28,57 +39,176 @@ Env& env() {
     return e;
 }
 
-render::Scene ggx(double incidence) {
+render::Scene ggx(double incidence, double alpha = 0.1) {
     render::Scene s;
     s.brdf.model = brdf::Model::GGX;
-    s.brdf.roughness = 0.1;
+    s.brdf.roughness = alpha;
     s.light.incidenceDeg = incidence;
     return s;
 }
 
+/// The measurement camera on the mirror direction with a 30 degree field: the whole frame is shaded.
+PinholeCamera frameOf(const render::Scene& s, int size) {
+    return experiments::measurementCamera(s, s.light.chart().wr(), 30, size, size);
+}
+
+void pixelRate(benchmark::State& state, double pixels) {
+    state.counters["Mpixel/s"] =
+        benchmark::Counter(pixels * double(state.iterations()) / 1e6, benchmark::Counter::kIsRate);
+}
+
+// ---- One measurement ----
+
 void BM_MeasureAutoFramed(benchmark::State& state) {
-    const int size = int(state.range(0));
     experiments::MeasureSetup setup;
-    setup.width = setup.height = size;
+    setup.width = setup.height = int(state.range(0));
+    setup.crop = state.range(1) != 0;
     const render::Scene s = ggx(60);
     experiments::measureGl(*env().renderer, s, setup);  // warm-up: compile, allocate
-    int renders = 0;
-    for (auto _ : state) renders = experiments::measureGl(*env().renderer, s, setup).renders;
-    state.counters["renders"] = renders;
+    experiments::Measurement m;
+    double renderMs = 0, measureMs = 0;
+    for (auto _ : state) {
+        m = experiments::measureGl(*env().renderer, s, setup);
+        renderMs += m.render_ms, measureMs += m.measure_ms;
+    }
+    state.counters["render_ms"] = renderMs / double(state.iterations());    // draw + readback, all renders
+    state.counters["measure_ms"] = measureMs / double(state.iterations());  // analysis + framing arithmetic
+    state.counters["renders"] = m.renders;
+    state.counters["shaded_px"] = double(m.shadedPixels);
+    state.SetLabel(setup.crop ? "crop" : "whole frame");
 }
-BENCHMARK(BM_MeasureAutoFramed)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1.0);
-
-void BM_RenderReadback(benchmark::State& state) {
-    const int size = int(state.range(0));
-    const render::Scene s = ggx(60);
-    const PinholeCamera cam = experiments::measurementCamera(s, s.light.chart().wr(), 30, size, size);
-    ImageF img;
-    const auto out = state.range(1) ? render::Output::Measure : render::Output::Color;
-    env().renderer->render(s, cam, out, img);
-    for (auto _ : state) env().renderer->render(s, cam, out, img);
-    state.SetLabel(state.range(1) ? "measure" : "color");
-    state.counters["Mpixel/s"] =
-        benchmark::Counter(double(size) * size * double(state.iterations()) / 1e6, benchmark::Counter::kIsRate);
-}
-BENCHMARK(BM_RenderReadback)->ArgsProduct({{128, 256, 512, 1024, 2048}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
-
-void BM_Analysis(benchmark::State& state) {
-    const int size = int(state.range(0));
-    const render::Scene s = ggx(60);
-    const PinholeCamera cam = experiments::measurementCamera(s, s.light.chart().wr(), 30, size, size);
-    const ImageF img = env().renderer->render(s, cam, render::Output::Measure);
-    measure::Options opt;
-    opt.subpixel = state.range(1) != 0;
-    for (auto _ : state) benchmark::DoNotOptimize(measure::measureImage(img.data.data(), size, size, opt));
-    state.SetLabel(opt.subpixel ? "subpixel" : "pixel");
-}
-BENCHMARK(BM_Analysis)->ArgsProduct({{128, 512, 2048}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MeasureAutoFramed)->ArgsProduct({{128, 512, 2048}, {1, 0}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MeasureAutoFramed)
+    ->Name("BM_MeasureAutoFramed_cpu_time")
+    ->Args({512, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_Reference(benchmark::State& state) {
     const render::Scene s = ggx(60);
     for (auto _ : state) benchmark::DoNotOptimize(experiments::measureReference(s, {}));
 }
 BENCHMARK(BM_Reference)->Unit(benchmark::kMillisecond);
+
+void BM_Tolerance(benchmark::State& state) {
+    const render::Scene s = state.range(0) == 0 ? ggx(60) : ggx(80, 0.02);
+    experiments::ToleranceSetup t;
+    t.tolerance = 1e-3;
+    experiments::measureToTolerance(env().renderer.get(), s, t);  // warm-up
+    experiments::ToleranceResult r;
+    for (auto _ : state) r = experiments::measureToTolerance(env().renderer.get(), s, t);
+    state.counters["size"] = r.setup.width;
+    state.counters["error_estimate"] = r.errorEstimate;
+    state.SetLabel(state.range(0) == 0 ? "ggx 0.1 @60" : "ggx 0.02 @80");
+}
+BENCHMARK(BM_Tolerance)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// ---- Stages: draw, readback, analysis ----
+
+void BM_Draw(benchmark::State& state) {
+    const int size = int(state.range(0));
+    const render::Scene s = ggx(60);
+    const PinholeCamera cam = frameOf(s, size);
+    ImageF img;
+    env().renderer->render(s, cam, render::Output::Measure, img);
+    for (auto _ : state) {
+        env().renderer->draw(s, cam, render::Output::Measure);
+        env().renderer->finish();
+    }
+    pixelRate(state, double(size) * size);
+}
+BENCHMARK(BM_Draw)->RangeMultiplier(2)->Range(128, 2048)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Readback(benchmark::State& state) {
+    const int size = int(state.range(0));
+    const render::Scene s = ggx(60);
+    ImageF img;
+    env().renderer->render(s, frameOf(s, size), render::Output::Measure, img);
+    for (auto _ : state) env().renderer->readback(img);
+    state.counters["MB/s"] =
+        benchmark::Counter(16.0 * size * size * double(state.iterations()) / 1e6, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Readback)->RangeMultiplier(2)->Range(128, 2048)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Analysis(benchmark::State& state) {
+    const int size = int(state.range(0));
+    const render::Scene s = ggx(60);
+    const ImageF img = env().renderer->render(s, frameOf(s, size), render::Output::Measure);
+    measure::Options opt;
+    opt.subpixel = state.range(1) != 0;
+    for (auto _ : state) benchmark::DoNotOptimize(measure::measureImage(img.data.data(), size, size, opt));
+    state.SetLabel(opt.subpixel ? "subpixel" : "pixel");
+}
+BENCHMARK(BM_Analysis)->ArgsProduct({{128, 256, 512, 1024, 2048}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+// ---- Effect sets: shading cost of what the program contains ----
+
+render::Scene effectSet(int k) {
+    render::Scene s = ggx(60);
+    brdf::Params& p = s.brdf;
+    if (k >= 1) p.fresnel = brdf::Fresnel::Dielectric, p.geometry = brdf::Geometry::Smith;  // D + F + G
+    if (k >= 2) p.diffuse = brdf::Diffuse::Lambert;                                          // + diffuse
+    if (k >= 3) {                                                                            // + spectral
+        p.spectrum = brdf::loadSpectrum(render::dataDirectory(), "copper", 5);
+        p.fresnel = brdf::Fresnel::Spectral;
+    }
+    if (k >= 4) p.roughnessY = 0.2;  // + anisotropy
+    return s;
+}
+const char* kEffectNames[] = {"NDF only", "D+F+G", "+ diffuse", "+ spectral", "+ anisotropy"};
+
+void BM_EffectSet(benchmark::State& state) {
+    const render::Scene s = effectSet(int(state.range(0)));
+    const int size = 512;
+    const PinholeCamera cam = frameOf(s, size);
+    ImageF img;
+    env().renderer->render(s, cam, render::Output::Measure, img);  // compile
+    for (auto _ : state) env().renderer->render(s, cam, render::Output::Measure, img);
+    pixelRate(state, double(size) * size);
+    state.SetLabel(kEffectNames[state.range(0)]);
+}
+BENCHMARK(BM_EffectSet)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// ---- Sweep throughput: configurations per second ----
+
+void BM_Sweep(benchmark::State& state) {
+    experiments::MeasureSetup setup;
+    setup.width = setup.height = int(state.range(0));
+    const brdf::Model models[] = {brdf::Model::Phong, brdf::Model::Blinn, brdf::Model::Beckmann, brdf::Model::GGX};
+    const double params[] = {1000, 395, 0.1, 0.1};
+    long configs = 0;
+    for (auto _ : state)
+        for (int mi = 0; mi < 4; ++mi)
+            for (int inc = 0; inc < 90; ++inc) {
+                render::Scene s = ggx(inc);
+                s.brdf.model = models[mi];
+                (brdf::usesExponent(models[mi]) ? s.brdf.exponent : s.brdf.roughness) = params[mi];
+                benchmark::DoNotOptimize(experiments::measureGl(*env().renderer, s, setup));
+                ++configs;
+            }
+    state.counters["configs/s"] = benchmark::Counter(double(configs), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Sweep)->Arg(256)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+// ---- GL float path against the CPU double path on the same pixels ----
+
+void BM_View(benchmark::State& state) {
+    const int size = int(state.range(0));
+    const bool cpu = state.range(1) != 0;
+    const render::Scene s = ggx(60);
+    const PinholeCamera cam = frameOf(s, size);
+    ImageF img;
+    env().renderer->render(s, cam, render::Output::Measure, img);
+    for (auto _ : state) {
+        if (cpu) render::renderMeasureCpu(s, cam, img);
+        else env().renderer->render(s, cam, render::Output::Measure, img);
+    }
+    pixelRate(state, double(size) * size);
+    state.SetLabel(cpu ? "cpu double, " + std::to_string(std::thread::hardware_concurrency()) + " threads"
+                       : std::string("gl float"));
+}
+BENCHMARK(BM_View)->ArgsProduct({{128, 512}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -9,6 +9,7 @@ uniform vec3 uCamRight;
 uniform vec3 uCamUp;
 uniform vec2 uTanHalf;    // image half extents at unit focal distance
 uniform vec2 uViewport;   // width, height in pixels
+uniform vec2 uJitter;     // sample offset from the pixel centre, in pixels (supersampling; 0 = centre)
 uniform vec3 uWi;         // towards the light (unit)
 uniform float uIrradiance;
 #if defined(HILITE_LIGHT_POINT)
@@ -37,7 +38,7 @@ vec2 chartCoords(vec3 we, out float rhoOverSin) {
 }
 
 void main() {
-    vec2 xy = (2.0 * gl_FragCoord.xy / uViewport - 1.0) * uTanHalf;
+    vec2 xy = (2.0 * (gl_FragCoord.xy + uJitter) / uViewport - 1.0) * uTanHalf;
     vec3 d = -uCamBack + xy.x * uCamRight + xy.y * uCamUp;
     float len = sqrt(dot(d, d));
     vec3 we = -d / len;  // exitant direction: from the surface towards the eye

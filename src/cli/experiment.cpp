@@ -36,6 +36,58 @@ nlohmann::json typed(const std::string& v) {
     return v;
 }
 
+/// A scalar TOML value as JSON (tags are strings, numbers or booleans).
+nlohmann::json scalar(const toml::node& v, const std::string& where) {
+    if (auto x = v.value_exact<std::string>()) return *x;
+    if (auto x = v.value_exact<bool>()) return *x;
+    if (auto x = v.value<double>()) return *x;
+    throw InputError(where + ": a tag is a string, a number or a boolean");
+}
+
+/// Scene tables of a case (or of its `reference`), each key checked against the schema.
+std::vector<SceneArg> caseArgs(const toml::table& t, const std::string& file, const std::string& what,
+                               const CLI::App& app, std::initializer_list<const char*> special) {
+    toml::table scene;
+    for (const auto& [k, v] : t) {
+        const std::string key(k.str());
+        if (std::find_if(special.begin(), special.end(), [&](const char* s) { return key == s; }) != special.end())
+            continue;
+        if (!v.is_table())
+            throw InputError(line(file, v) + ": " + what + ": " + key +
+                             ": unknown key (allowed: name, tags, reference and the scene tables material, light, "
+                             "camera, measurement)");
+        scene.insert(key, *v.as_table());
+    }
+    return sceneArgs(scene, file, app);
+}
+
+/// `cases = [{ name = "...", tags = {...}, reference = {...}, material = {...}, ... }, ...]`.
+std::vector<SweepCase> parseCases(const toml::array& cases, const std::string& file, const std::string& key,
+                                  const CLI::App& app) {
+    std::vector<SweepCase> out;
+    for (const auto& c : cases) {
+        const auto* t = c.as_table();
+        if (!t) throw InputError(line(file, c) + ": sweep " + key + ": each case is a table { name = \"...\", ... }");
+        SweepCase sc;
+        const auto name = (*t)["name"].value<std::string>();
+        if (!name || name->empty()) throw InputError(line(file, c) + ": sweep " + key + ": a case needs name = \"...\"");
+        sc.name = *name;
+        for (const auto& o : out)
+            if (o.name == sc.name) throw InputError(line(file, c) + ": sweep " + key + ": two cases named '" + sc.name + "'");
+        const std::string what = "sweep " + key + " case '" + sc.name + "'";
+        sc.tags = nlohmann::json::object();
+        for (const char* k : {"tags", "reference"})  // both are tables; anything else would be dropped silently
+            if ((*t)[k] && !(*t)[k].is_table())
+                throw InputError(line(file, *(*t)[k].node()) + ": " + what + ": " + k + " = { ... } (a table)");
+        if (const auto* tags = (*t)["tags"].as_table())
+            for (const auto& [k, v] : *tags) sc.tags[std::string(k.str())] = scalar(v, line(file, v) + ": " + what);
+        if (const auto* ref = (*t)["reference"].as_table()) sc.reference = caseArgs(*ref, file, what + " reference", app, {});
+        sc.args = caseArgs(*t, file, what, app, {"name", "tags", "reference"});
+        out.push_back(sc);
+    }
+    return out;
+}
+
 SweepAxis parseAxis(const toml::table& t, const std::string& file, const CLI::App& app, std::vector<std::vector<SceneArg>>& args) {
     SweepAxis axis;
     const auto key = t["key"].value<std::string>();
@@ -60,8 +112,14 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file, const CLI::Ap
         }
     } else if (const auto* values = t["values"].as_array()) {
         for (const auto& v : *values) out.push_back(sceneArg(file, axis.key, v, app));
+    } else if (const auto* cases = t["cases"].as_array()) {
+        axis.cases = parseCases(*cases, file, axis.key, app);
+        if (axis.cases.empty()) throw InputError(line(file, t) + ": sweep " + axis.key + ": no cases");
+        for (const auto& c : axis.cases) axis.values.push_back(c.name);
+        return axis;
     } else {
-        throw InputError(line(file, t) + ": sweep " + axis.key + ": needs values = [...] or range = [start, stop, step]");
+        throw InputError(line(file, t) + ": sweep " + axis.key +
+                         ": needs values = [...], range = [start, stop, step] or cases = [{ name = ..., ... }]");
     }
     if (out.empty()) throw InputError(line(file, t) + ": sweep " + axis.key + ": no values");
     for (const auto& a : out) axis.values.push_back(a.value);
@@ -93,6 +151,48 @@ std::string findExperiment(const std::string& name) {
     throw InputError("run: no experiment '" + name + "' (give a file, or a name from experiments/)");
 }
 
+namespace {
+
+int wholeNumber(const toml::node_view<toml::node>& v, const std::string& file, const std::string& key, int lo, int hi,
+                int fallback) {
+    if (!v) return fallback;
+    const auto x = v.value_exact<int64_t>();
+    if (!x || *x < lo || *x > hi)
+        throw InputError(line(file, *v.node()) + ": " + key + ": a whole number in [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "]");
+    return int(*x);
+}
+
+/// [reference], [timing] and [pareto]: the tables of an accuracy/cost study (issue 7).
+void parseErrorTables(toml::table& doc, const std::string& path, Experiment& e) {
+    if (const auto* ref = doc["reference"].as_table()) e.referenceErrors = (*ref)["errors"].value_or(true);
+    if (doc["timing"].as_table()) {
+        e.timing = true;
+        e.repeats = wholeNumber(doc["timing"]["repeats"], path, "timing.repeats", 1, 1000, 5);
+        e.warmup = wholeNumber(doc["timing"]["warmup"], path, "timing.warmup", 0, 1000, 1);
+    }
+    if (const auto* pareto = doc["pareto"].as_array()) {
+        for (const auto& p : *pareto) {
+            const auto* t = p.as_table();
+            if (!t) throw InputError(line(path, p) + ": [[pareto]] entries are tables");
+            ParetoSpec spec;
+            spec.file = (*t)["file"].value_or(spec.file);
+            spec.title = (*t)["title"].value_or(spec.title);
+            spec.setting = (*t)["setting"].value_or(spec.setting);
+            spec.series = (*t)["series"].value_or(spec.series);
+            spec.error = (*t)["error"].value_or(spec.error);
+            spec.time = (*t)["time"].value_or(spec.time);
+            if (const auto* targets = (*t)["targets"].as_array())
+                for (const auto& x : *targets) spec.targets.push_back(x.value_or(0.0));
+            e.pareto.push_back(spec);
+        }
+    } else if (doc["pareto"]) {
+        throw InputError(line(path, *doc["pareto"].node()) + ": pareto: write it as [[pareto]] (one per plot)");
+    }
+}
+
+}  // namespace
+
 Experiment loadExperiment(const std::string& path) { return parseExperiment(readText(path), path); }
 
 Experiment parseExperiment(const std::string& text, const std::string& path) {
@@ -108,13 +208,14 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
     }
     for (const auto& [k, v] : doc) {
         static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
-                                                         "contact_sheet", "strip", "summary"};
+                                                         "contact_sheet", "strip", "summary", "reference", "timing", "pareto"};
         const std::string table(k.str());
         if (std::find(allowed.begin(), allowed.end(), table) == allowed.end()) {
             const std::string hint = didYouMean(table, allowed);
             throw InputError(line(path, v) + ": " + table + ": unknown table" +
                              (hint.empty() ? std::string() : " (did you mean '" + hint + "'?)") +
-                             "; allowed: experiment, scene, sweep, match, plot, contact_sheet, strip, summary");
+                             "; allowed: experiment, scene, sweep, match, plot, contact_sheet, strip, summary, reference, "
+                             "timing, pareto");
         }
     }
     const std::string stem = path.substr(path.rfind('/') + 1);
@@ -142,6 +243,8 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
             spec.xlabel = t["xlabel"].value_or(std::string());
             spec.ylabel = t["ylabel"].value_or(std::string());
             spec.key = t["key"].value_or(spec.key);
+            spec.logx = t["logx"].value_or(false);
+            spec.logy = t["logy"].value_or(false);
             if (const auto* th = t["theory"].as_array())
                 for (const auto& c : *th)
                     if (const auto* pair = c.as_array(); pair && pair->size() == 2)
@@ -178,15 +281,21 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
         if (const auto* at = (*summary)["at"].as_array())
             for (const auto& x : *at) e.summaryAt.push_back(x.value_or(0.0));
     }
+    parseErrorTables(doc, path, e);
     return e;
 }
 
 std::vector<Configuration> Experiment::configurations() const {
     Schema schema;
     std::vector<std::vector<SceneArg>> axisArgs;
-    // Re-derive each axis' flag arguments (validated) from its values.
+    // Re-derive each axis' flag arguments (validated) from its values; a case axis has them already.
     for (const auto& a : axes) {
         std::vector<SceneArg> out;
+        if (!a.cases.empty()) {
+            out.resize(a.cases.size());  // placeholders: the case's own arguments are used below
+            axisArgs.push_back(out);
+            continue;
+        }
         for (const auto& v : a.values) {
             toml::value<std::string> node(v);
             SceneArg arg = sceneArg(path, a.key, node, schema.app);
@@ -206,8 +315,16 @@ std::vector<Configuration> Experiment::configurations() const {
         c.index = index;
         c.args = base;
         for (size_t a = 0; a < axes.size(); ++a) {
-            c.args.push_back(axisArgs[a][idx[a]]);
             c.sweep[axes[a].key] = typed(axes[a].values[idx[a]]);
+            if (axes[a].cases.empty()) {
+                c.args.push_back(axisArgs[a][idx[a]]);
+                continue;
+            }
+            const SweepCase& sc = axes[a].cases[idx[a]];
+            c.args.insert(c.args.end(), sc.args.begin(), sc.args.end());
+            c.reference.insert(c.reference.end(), sc.reference.begin(), sc.reference.end());
+            c.tags[axes[a].key] = sc.name;
+            for (const auto& [k, v] : sc.tags.items()) c.tags[k] = v;
         }
         configs.push_back(c);
         size_t a = axes.size();
@@ -218,12 +335,14 @@ std::vector<Configuration> Experiment::configurations() const {
     for (const auto& c : configs) {
         Schema s;
         std::vector<std::string> argv;
-        for (const auto& a : c.args) {
+        std::vector<SceneArg> all = c.args;  // the reference scene must be valid too
+        all.insert(all.end(), c.reference.begin(), c.reference.end());
+        for (const auto& a : all) {
             argv.push_back(a.flag);
             if (!a.value.empty()) argv.push_back(a.value);
         }
         std::map<std::string, std::string> origins;
-        for (const auto& a : c.args) origins[a.flag] = a.origin;
+        for (const auto& a : all) origins[a.flag] = a.origin;
         std::reverse(argv.begin(), argv.end());
         try {
             s.app.parse(argv);

@@ -5,6 +5,7 @@
 
 #include "cli/measure_cmd.hpp"
 #include "cli/scene_file.hpp"
+#include "experiments/pareto.hpp"
 #include "experiments/plot.hpp"
 #include "gl/context.hpp"
 #include "render/renderer.hpp"
@@ -19,15 +20,28 @@ namespace hilite::cli {
 
 struct Configuration {
     long index = 0;
-    std::vector<SceneArg> args;  ///< base scene, then one value per sweep axis
-    nlohmann::json sweep;        ///< the axis values of this configuration ("light.incidence": 30, ...)
+    std::vector<SceneArg> args;       ///< base scene, then one value per sweep axis
+    nlohmann::json sweep;             ///< the axis values of this configuration ("light.incidence": 30, ...)
+    nlohmann::json tags;              ///< case axes: their names and tags, written to the row as columns
+    std::vector<SceneArg> reference;  ///< case axes: what the reference scene changes (e.g. the exact Fresnel)
+};
+
+/// One value of a case axis: a named group of scene keys (e.g. a scene, or a setting of the knobs).
+struct SweepCase {
+    std::string name;
+    std::vector<SceneArg> args;       ///< the case's scene keys
+    std::vector<SceneArg> reference;  ///< `reference = { ... }`: keys changed only for the reference
+    nlohmann::json tags;              ///< `tags = { knob = "size" }`: extra row columns
 };
 
 struct SweepAxis {
-    std::string key;                  ///< "light.incidence"
-    std::vector<std::string> values;  ///< as flag values
+    std::string key;                  ///< "light.incidence"; for a case axis the column of the case names
+    std::vector<std::string> values;  ///< as flag values; for a case axis the case names
     std::vector<int> lines;
+    std::vector<SweepCase> cases;     ///< non-empty: a case axis (`cases = [...]` instead of values/range)
 };
+
+using experiments::ParetoSpec;
 
 struct Experiment {
     std::string path, text;  ///< the file and its text (copied beside the results for merge)
@@ -41,6 +55,10 @@ struct Experiment {
     std::vector<std::pair<std::string, std::string>> strips;  ///< [[strip]]: material, PNG file
     std::string summarySeries, summaryX = "incidence_deg";
     std::vector<double> summaryAt;
+    bool referenceErrors = false;  ///< [reference] errors = true: each row's error against the double reference
+    int repeats = 1, warmup = 0;   ///< [timing]: each configuration measured warmup + repeats times
+    bool timing = false;           ///< [timing] present: rows get time_ms, the median of the repeats
+    std::vector<ParetoSpec> pareto;
 
     /// Every configuration, validated (a bad value anywhere fails before anything runs).
     std::vector<Configuration> configurations() const;
@@ -69,6 +87,9 @@ public:
 private:
     ResolvedMeasure resolve(const std::vector<SceneArg>& args, MeasureFlags& flags, nlohmann::json* params) const;
     void applyMatch(std::vector<SceneArg>& args, nlohmann::json& row);
+    /// The double reference of a configuration's scene (with its case's reference keys), cached by scene.
+    const measure::Shape& reference(const Configuration& c, std::vector<SceneArg> args);
+    void addErrors(nlohmann::json& row, const measure::Shape& ref) const;
     render::Renderer& renderer();
 
     const Experiment& m_exp;
@@ -76,6 +97,7 @@ private:
     std::vector<std::string> m_columns;
     double m_targetMajorDeg = 0;
     std::map<std::string, double> m_matched;  ///< model -> matched width parameter
+    std::map<std::string, measure::Shape> m_references;  ///< reference scene -> its measurement
     std::unique_ptr<gl::Context> m_context;
     std::unique_ptr<render::Renderer> m_renderer;
 };

@@ -9,6 +9,7 @@
 #include "io/image_io.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -64,6 +65,20 @@ ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backe
                                     kMeasureColumns.end())
             m_columns.push_back(paramName(*o));
     m_columns.insert(m_columns.end(), kMeasureColumns.begin(), kMeasureColumns.end());
+    // Case axes: the case names and tags come first, after config (what the row is about).
+    std::vector<std::string> tagColumns;
+    for (const auto& a : e.axes)
+        if (!a.cases.empty()) {
+            tagColumns.push_back(a.key);
+            for (const auto& c : a.cases)
+                for (const auto& [k, v] : c.tags.items())
+                    if (std::find(tagColumns.begin(), tagColumns.end(), k) == tagColumns.end()) tagColumns.push_back(k);
+        }
+    m_columns.insert(m_columns.begin() + 1, tagColumns.begin(), tagColumns.end());
+    if (e.referenceErrors)
+        m_columns.insert(m_columns.end(), {"ref_aspect", "ref_major_deg", "ref_minor_deg", "aspect_error",
+                                           "major_error", "minor_error"});
+    if (e.timing) m_columns.insert(m_columns.end(), {"time_ms", "repeats", "error_estimate"});
     if (!e.match.empty()) {
         MeasureFlags mf;
         std::vector<SceneArg> args = e.base;
@@ -139,9 +154,47 @@ void ExperimentRunner::applyMatch(std::vector<SceneArg>& args, nlohmann::json& r
     row["matched_parameter"] = it->second;
 }
 
+namespace {
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+const measure::Shape& ExperimentRunner::reference(const Configuration& c, std::vector<SceneArg> args) {
+    args.insert(args.end(), c.reference.begin(), c.reference.end());
+    MeasureFlags f;
+    const ResolvedMeasure r = resolve(args, f, nullptr);
+    std::ostringstream key;  // the scene and the threshold define the reference; the settings do not
+    key << r.scene << " incidence=" << r.angles.front() << " threshold=" << r.setup.options.threshold;
+    auto it = m_references.find(key.str());
+    if (it == m_references.end()) {
+        render::Scene scene = r.scene;
+        scene.light.incidenceDeg = r.angles.front();
+        it = m_references.emplace(key.str(), experiments::measureReference(scene, r.setup.options).shape).first;
+    }
+    return it->second;
+}
+
+void ExperimentRunner::addErrors(nlohmann::json& row, const measure::Shape& ref) const {
+    row["ref_aspect"] = ref.aspect;
+    row["ref_major_deg"] = ref.major_deg;
+    row["ref_minor_deg"] = ref.minor_deg;
+    auto num = [&](const char* k) { return row.contains(k) && row[k].is_number() ? row[k].get<double>() : NAN; };
+    const double a = num("aspect"), ma = num("major_deg"), mi = num("minor_deg");
+    auto json = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    row["aspect_error"] = json(std::abs(a - ref.aspect));
+    row["major_error"] = json(std::abs(ma / ref.major_deg - 1.0));  // relative
+    row["minor_error"] = json(std::abs(mi / ref.minor_deg - 1.0));
+}
+
 nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     nlohmann::json row;
     row["config"] = c.index;
+    for (const auto& [k, v] : c.tags.items()) row[k] = v;
     std::vector<SceneArg> args = c.args;
     applyMatch(args, row);
     MeasureFlags f;
@@ -150,11 +203,26 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     if (r.angles.size() != 1)
         throw InputError(m_exp.path + ": light.incidence: one angle per configuration (sweep it with [[sweep]])");
     for (auto& [k, v] : params.items()) row[k] = v;
-    const auto m = f.reference ? experiments::measureReference(r.scene, r.setup.options)
-                               : experiments::measureAny(renderer(), r.scene, r.setup);
-    const nlohmann::json measured =
-        measurementRow(r.scene, m, f, r.setup.width, r.setup.height, f.reference ? "reference" : "gl");
+    render::Renderer* gl = f.reference || r.setup.cpu ? nullptr : &renderer();
+    // [timing]: warm-up runs (programs compiled, buffers allocated), then the median of the repeats'
+    // wall times; the row's numbers are the last repeat's (every repeat measures the same).
+    const int warmup = m_exp.timing ? m_exp.warmup : 0, repeats = m_exp.timing ? m_exp.repeats : 1;
+    for (int i = 0; i < warmup; ++i) measureRow(gl, r, f);
+    nlohmann::json measured;
+    std::vector<double> times;
+    for (int i = 0; i < repeats; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        measured = measureRow(gl, r, f);
+        const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        // --tolerance times itself without its one-off warm-up measurement (startup_ms): take its word.
+        times.push_back(measured.contains("time_ms") ? measured["time_ms"].get<double>() : wall);
+    }
     for (auto& [k, v] : measured.items()) row[k] = v;
+    if (m_exp.timing) {
+        row["time_ms"] = median(times);
+        row["repeats"] = repeats;
+    }
+    if (m_exp.referenceErrors) addErrors(row, reference(c, args));
     return row;
 }
 
@@ -271,6 +339,16 @@ void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohma
             md << std::setprecision(3) << "| " << s << " | " << worst[s].first << " | " << worst[s].second << " |\n";
     }
     md << microSummary(rows);  // issue 10: bump-field rows only
+    for (const auto& spec : m_exp.pareto) {
+        const auto points = experiments::paretoPoints(spec, rows);
+        std::string why;
+        if (!experiments::plotPareto(dir, spec, points, why)) notes.push_back("plot " + spec.file + " not made: " + why);
+        md << experiments::paretoMarkdown(spec, points);
+    }
+    if (m_exp.timing)
+        md << "Times: wall clock of one whole measurement (framing, renders, readback, analysis) in the running "
+              "process, the median of "
+           << m_exp.repeats << " repeats after " << m_exp.warmup << " warm-up run(s) per row.\n";
     for (const auto& n : notes) md << "\nNote: " << n << "\n";
     io::writeFileAtomic(dir + "/summary.md", md.str());
 }

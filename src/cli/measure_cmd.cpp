@@ -9,6 +9,7 @@
 #include "experiments/measure_bumps.hpp"
 #include "experiments/measure_scene.hpp"
 #include "cli/micro_fields.hpp"
+#include "experiments/tolerance.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -47,7 +48,7 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     for (auto fl : r.flags) flags.push_back(measure::toString(fl));
     j["flags"] = flags;
     j["renders"] = m.renders;
-    j["size"] = method == "gl" ? std::to_string(width) + "x" + std::to_string(height) : "";
+    j["size"] = method != "reference" ? std::to_string(width) + "x" + std::to_string(height) : "";
     j["fov_deg"] = m.fovDeg;
     j["minor_pixels"] = std::isfinite(r.minor_pixels) ? nlohmann::json(r.minor_pixels) : nlohmann::json(nullptr);
     j["render_ms"] = m.render_ms;
@@ -71,6 +72,38 @@ void printTableRow(const nlohmann::json& j) {
                 num("centroid_v_deg"), num("fwhm_u_deg"), num("fwhm_v_deg"), flags.c_str());
 }
 
+namespace {
+
+/// The --tolerance fields: what was asked, what was chosen, what it is estimated to reach, what it cost.
+void toleranceFields(nlohmann::json& j, const experiments::ToleranceResult& r) {
+    j["error_estimate"] = r.errorEstimate;
+    j["predicted_error"] = r.predictedError;
+    j["tolerance_met"] = r.met;
+    j["settings"] = {{"size", std::to_string(r.setup.width) + "x" + std::to_string(r.setup.height)},
+                     {"boundary", r.setup.options.subpixel ? "subpixel" : "pixel"},
+                     {"supersample", r.setup.supersample},
+                     {"framing", r.setup.fovDeg > 0 ? "fixed" : "auto"},
+                     {"renderer", r.setup.cpu ? "cpu" : "gl"}};
+    j["check"] = {{"size", std::to_string(r.checkSetup.width) + "x" + std::to_string(r.checkSetup.height)},
+                  {"aspect", r.check.shape.aspect}};
+    j["rounds"] = r.rounds;
+    j["time_ms"] = r.total_ms;
+    j["startup_ms"] = r.startup_ms;
+}
+
+void printToleranceLine(const nlohmann::json& j) {
+    std::printf("  tolerance %g: %s, %s boundary, supersample %d -> error estimate %.2g (%s), %.2f ms\n",
+                j["tolerance"].get<double>(), j["settings"]["size"].get<std::string>().c_str(),
+                j["settings"]["boundary"].get<std::string>().c_str(), j["settings"]["supersample"].get<int>(),
+                j["error_estimate"].get<double>(), j["tolerance_met"].get<bool>() ? "met" : "NOT met",
+                j["time_ms"].get<double>());
+}
+
+/// The issue-7 knobs: --supersample, --renderer, --crop, --tolerance.
+void resolveAccuracyFlags(const MeasureFlags& f, ResolvedMeasure& r);
+
+}  // namespace
+
 ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
     ResolvedMeasure r;
     render::Scene& scene = r.scene;
@@ -92,7 +125,53 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
     parseView(f.scene.view);  // checked, but a measurement always uses the measurement view
     if (f.reference && scene.surface.bumps)
         throw InputError("--reference: the CPU reference evaluates the analytic BRDF (drop --bumps explicit)");
+    resolveAccuracyFlags(f, r);
     return r;
+}
+
+namespace {
+
+void resolveAccuracyFlags(const MeasureFlags& f, ResolvedMeasure& r) {
+    experiments::MeasureSetup& setup = r.setup;
+    if (f.supersample < 1 || f.supersample > experiments::kMaxSupersample)
+        throw InputError("--supersample: must be a whole number in [1, " + std::to_string(experiments::kMaxSupersample) +
+                         "] (got " + std::to_string(f.supersample) + ")");
+    setup.supersample = f.supersample;
+    if (f.renderer != "gl" && f.renderer != "cpu")
+        throw InputError("--renderer: unknown '" + f.renderer + "' (allowed: gl, cpu)");
+    setup.cpu = f.renderer == "cpu";
+    if (f.crop != "on" && f.crop != "off") throw InputError("--crop: unknown '" + f.crop + "' (allowed: on, off)");
+    setup.crop = f.crop == "on";
+    if (!f.tolerance.empty()) {
+        r.tolerance = checkRange("--tolerance", parseNumberFlag("--tolerance", f.tolerance), kMinTolerance, kMaxTolerance);
+        if (f.reference) throw InputError("--tolerance: not with --reference (the reference has no settings to choose)");
+    }
+}
+
+}  // namespace
+
+nlohmann::json measureRow(render::Renderer* renderer, const ResolvedMeasure& r, const MeasureFlags& f) {
+    const render::Scene& scene = r.scene;
+    const experiments::MeasureSetup& setup = r.setup;
+    if (f.reference) {
+        const auto m = experiments::measureReference(scene, setup.options);
+        return measurementRow(scene, m, f, setup.width, setup.height, "reference");
+    }
+    if (r.tolerance > 0) {
+        experiments::ToleranceSetup t;
+        t.tolerance = r.tolerance;
+        t.base = setup;
+        const experiments::ToleranceResult res = experiments::measureToTolerance(renderer, scene, t);
+        nlohmann::json j = measurementRow(scene, res.measurement, f, res.setup.width, res.setup.height,
+                                          setup.cpu ? "cpu" : "gl");
+        toleranceFields(j, res);
+        j["tolerance"] = r.tolerance;
+        return j;
+    }
+    const auto m = experiments::measure(renderer, scene, setup);
+    nlohmann::json j = measurementRow(scene, m, f, setup.width, setup.height, setup.cpu ? "cpu" : "gl");
+    j["supersample"] = setup.supersample;
+    return j;
 }
 
 namespace {
@@ -101,21 +180,19 @@ int runMeasure(const MeasureFlags& f) {
     ResolvedMeasure resolved = resolveMeasure(f);
     render::Scene& scene = resolved.scene;
     const experiments::MeasureSetup& setup = resolved.setup;
-
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<render::Renderer> renderer;
-    if (!f.reference) {
+    if (!f.reference && !setup.cpu) {
         context = std::make_unique<gl::Context>(parseBackendFlag(f.scene.backend));
         renderer = std::make_unique<render::Renderer>(*context);
     }
     if (!f.json) printTableHeader();
     for (double angle : resolved.angles) {
         scene.light.incidenceDeg = angle;
-        const experiments::Measurement m = f.reference ? experiments::measureReference(scene, setup.options)
-                                                       : experiments::measureAny(*renderer, scene, setup);
-        const nlohmann::json j = measurementRow(scene, m, f, setup.width, setup.height, f.reference ? "reference" : "gl");
+        const nlohmann::json j = measureRow(renderer.get(), resolved, f);
         if (f.json) std::cout << j.dump() << "\n" << std::flush;
         else printTableRow(j);
+        if (!f.json && j.contains("tolerance")) printToleranceLine(j);
     }
     return 0;
 }
@@ -131,6 +208,21 @@ void addMeasureFlags(CLI::App& app, MeasureFlags& flags) {
         ->capture_default_str();
     app.add_option("--boundary", f->boundary, "subpixel (contour pixels count their covered fraction) | pixel (in/out)")
         ->capture_default_str();
+    app.add_option("--supersample", f->supersample,
+                   "N: render the final frame N x N times with jittered sub-pixel sample points and count each pixel's "
+                   "covered fraction (replaces --boundary), N in [1, 8]")
+        ->capture_default_str();
+    app.add_option("--renderer", f->renderer, "gl (float shader) | cpu (the double-precision twin on every core)")
+        ->capture_default_str();
+    app.add_option("--crop", f->crop,
+                   "on: automatic framing shades, reads and analyses only the region's box of the final frame (same "
+                   "numbers, less time) | off: the whole frame")
+        ->capture_default_str();
+    app.add_option("--tolerance", f->tolerance,
+                   "E in [1e-5, 0.1]: choose the cheapest settings (size, sub-pixel boundary) predicted to reach aspect "
+                   "error E, check them against the next finer size, report settings, error_estimate and time_ms "
+                   "(--json fields; a table adds a line); --size, --boundary, --supersample, --fov are chosen, not "
+                   "read");
     app.add_flag("--json", f->json, "one JSON object per line instead of a table");
     app.add_flag("--reference", f->reference, "use the CPU double-precision reference instead of GL");
     assignSections(app, 0);

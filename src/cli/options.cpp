@@ -44,6 +44,8 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 }  // namespace
 
+double parseNumberFlag(const std::string& flag, const std::string& text) { return parseNumber(flag, text); }
+
 double checkRange(const std::string& flag, double v, double lo, double hi) {
     if (!std::isfinite(v) || v < lo || v > hi)
         throw InputError(flag + ": must be a finite number in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(v) + ")");

@@ -60,6 +60,8 @@ void parseSize(const std::string& s, int& width, int& height);
 std::vector<double> parseIncidence(const std::string& s, bool allowMany);
 View parseView(const std::string& s);
 gl::Backend parseBackendFlag(const std::string& s);
+/// The number `text` spells, or throws InputError "flag: 'text' is not a number".
+double parseNumberFlag(const std::string& flag, const std::string& text);
 /// A finite number within [lo, hi] or throws InputError "flag: must be ... (got ...)".
 double checkRange(const std::string& flag, double v, double lo, double hi);
 

@@ -190,7 +190,8 @@ void assignSections(CLI::App& app, size_t firstOption) {
         {"distance", "Camera"}, {"gl-backend", "Camera"}};
     static const std::map<std::string, std::string> measurement = {
         {"threshold", "Measurement"}, {"min-pixels", "Measurement"}, {"boundary", "Measurement"},
-        {"reference", "Measurement"}};
+        {"reference", "Measurement"}, {"supersample", "Measurement"}, {"renderer", "Measurement"}, {"crop", "Measurement"},
+        {"tolerance", "Measurement"}};
     static const std::map<std::string, std::string> surface = {
         {"bumps", "Surface"}, {"bump-period-px", "Surface"}, {"bump-seed", "Surface"}, {"bump-samples", "Surface"},
         {"sun", "Surface"}};

@@ -6,6 +6,12 @@
 
 namespace hilite {
 
+/// A rectangle of pixels (x, y: its lower-left pixel; row 0 at the bottom). Empty (width 0): the whole image.
+struct PixelRect {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool empty() const { return width <= 0 || height <= 0; }
+};
+
 struct ImageF {
     int width = 0;
     int height = 0;

@@ -7,9 +7,15 @@
 #include "render/renderer.hpp"
 #include "render/scene.hpp"
 
+#include <array>
+#include <iosfwd>
 #include <string>
 
 namespace hilite::experiments {
+
+/// Largest supersampling grid side n (n^2 renders): beyond 8 the coverage steps (1/64) are far below
+/// every other error and the time is 64 renders.
+constexpr int kMaxSupersample = 8;
 
 struct MeasureSetup {
     int width = 512, height = 512;
@@ -18,26 +24,41 @@ struct MeasureSetup {
     int coarseSize = 64;      ///< automatic framing: size of the aiming renders
     int maxRenders = 5;       ///< automatic framing: at most this many renders in all (aiming + final)
     double fill = 0.8;        ///< automatic framing: the region's half-extent as a fraction of the half-frame
+    /// Automatic framing: the final frame is drawn, read and analysed only over the region's box seen in
+    /// the last aiming render, plus a margin (the frame, its pixels and the numbers stay those of the
+    /// whole frame). If the region reaches the crop's edge the whole frame is rendered again.
+    bool crop = true;
+    int supersample = 1;      ///< n: the final frame is rendered n x n times, jittered (measure/supersample.hpp)
+    bool cpu = false;         ///< measure(): the double twin renders the view on the CPU instead of GL
+    int threads = 0;          ///< CPU path: threads (0: every core)
 };
+std::ostream& operator<<(std::ostream&, const MeasureSetup&);
 
 struct Measurement {
     measure::Shape shape;
     int renders = 0;          ///< GL renders it took (aiming + final)
     double fovDeg = 0;        ///< field of view of the final render
     dvec3 center{0, 0, 1};    ///< exitant direction at the centre of the final frame
-    double render_ms = 0;     ///< GL draw + readback, all renders
+    double render_ms = 0;     ///< GL draw + readback (or the CPU twin's render), all renders
     double measure_ms = 0;    ///< analysis of the final render (and framing arithmetic)
+    long shadedPixels = 0;    ///< pixels of the final frame drawn per sample (the crop, or the whole frame)
 };
 
 /// The lobe of a scene as a function of chart coordinates, evaluated by the double twin.
 measure::LobeFunction twinLobe(const render::Scene& scene);
 
-/// Angular radius (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
-/// direction, searched along +-u and +-v; a seed for framing and for the reference's search disc.
+/// Angular radii (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
+/// direction, along +u, -u, +v, -v (bisection to 1e-18 of the bracket; the horizon ends a ray too).
+std::array<double, 4> twinRadii(const render::Scene& scene, double threshold);
+/// The largest of twinRadii: a seed for framing and for the reference's search disc.
 double twinHalfWidth(const render::Scene& scene, double threshold);
 
 /// Measures the highlight in GL with fixed or automatic framing.
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);
+/// The same measurement with every render made by the CPU double twin (render/cpu_view.hpp).
+Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup);
+/// measureCpu when setup.cpu, else measureGl (`renderer` may be null for the CPU path).
+Measurement measure(render::Renderer* renderer, const render::Scene& scene, const MeasureSetup& setup);
 
 /// The CPU double-precision reference of the same definition (no GL).
 Measurement measureReference(const render::Scene& scene, const measure::Options& options);

@@ -9,13 +9,13 @@
 
 namespace hilite::experiments {
 
-namespace {
-
 std::string quoteShell(const std::string& s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
 }
+
+namespace {
 
 std::string label(const nlohmann::json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
@@ -42,7 +42,8 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
        << "set title " << nlohmann::json(spec.title).dump() << "\n"
        << "set xlabel " << nlohmann::json(spec.xlabel.empty() ? spec.x : spec.xlabel).dump() << "\n"
        << "set ylabel " << nlohmann::json(spec.ylabel.empty() ? spec.y : spec.ylabel).dump() << "\n"
-       << "set key " << spec.key << " box opaque\nset grid\n";
+       << "set key " << spec.key << " box opaque\nset grid\n"
+       << (spec.logx ? "set logscale x\n" : "") << (spec.logy ? "set logscale y\n" : "");
     gp << "plot ";
     bool first = true;
     for (size_t i = 0; i < order.size(); ++i) {
@@ -55,8 +56,13 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
         first = false;
     }
     gp << "\n";
+    return runGnuplot(dir, spec.file, gp.str(), why);
+}
+
+bool runGnuplot(const std::string& dir, const std::string& file, const std::string& commands, std::string& why) {
+    const std::string base = file.substr(0, file.rfind('.'));
     const std::string script = dir + "/" + base + ".gp";
-    io::writeFileAtomic(script, gp.str());
+    io::writeFileAtomic(script, commands);
     const std::string cmd = "gnuplot " + quoteShell(script) + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return why = "cannot start gnuplot", false;
@@ -64,7 +70,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     std::string out;
     while (std::fgets(buf, sizeof buf, p)) out += buf;
     if (pclose(p) != 0) return why = "gnuplot failed (install gnuplot-nox): " + out, false;
-    const std::string png = dir + "/" + spec.file;
+    const std::string png = dir + "/" + file;
     if (std::rename((png + ".tmp").c_str(), png.c_str()) != 0) return why = "cannot write " + png, false;
     return true;
 }

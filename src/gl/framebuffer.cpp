@@ -6,6 +6,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace hilite::gl {
@@ -50,12 +51,15 @@ void Framebuffer::bind() const {
     glViewport(0, 0, m_width, m_height);
 }
 
-void Framebuffer::read(ImageF& out) const {
-    if (out.width != m_width || out.height != m_height || out.channels != 4) out = ImageF(m_width, m_height, 4);
+void Framebuffer::read(ImageF& out, const PixelRect& rect) const {
+    const PixelRect r = rect.empty() ? PixelRect{0, 0, m_width, m_height} : rect;
+    if (r.x < 0 || r.y < 0 || r.x + r.width > m_width || r.y + r.height > m_height)
+        throw std::logic_error("Framebuffer::read: rectangle outside the framebuffer");
+    if (out.width != r.width || out.height != r.height || out.channels != 4) out = ImageF(r.width, r.height, 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, m_fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, m_width, m_height, GL_RGBA, GL_FLOAT, out.data.data());
+    glReadPixels(r.x, r.y, r.width, r.height, GL_RGBA, GL_FLOAT, out.data.data());
     HILITE_GL_CHECK_WHAT("glReadPixels");
 }
 

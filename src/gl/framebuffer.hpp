@@ -17,8 +17,9 @@ public:
     int width() const { return m_width; }
     int height() const { return m_height; }
     void bind() const;
-    /// Reads the colour attachment as 4 floats per pixel into `out` (resized as needed).
-    void read(ImageF& out) const;
+    /// Reads the colour attachment as 4 floats per pixel into `out` (resized as needed): the whole
+    /// attachment, or only `rect` (then `out` is rect.width x rect.height).
+    void read(ImageF& out, const PixelRect& rect = {}) const;
 
     /// Largest width/height this context allows (min of renderbuffer size and viewport dims).
     static int maxSize();

@@ -31,9 +31,19 @@ public:
     ~Renderer();
 
     /// Draws and reads back: 4 floats per pixel, row 0 at the bottom (see shaders/shade.frag for the
-    /// channels of each output).
-    void render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image);
+    /// channels of each output). `jitter` moves every pixel's sample point by that many pixels (the
+    /// shader's uJitter; (0, 0) = the pixel centre), for supersampling. A non-empty `crop` draws and reads
+    /// only those pixels of the camera's image (scissor): `image` is then crop.width x crop.height.
+    void render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image, dvec2 jitter = dvec2(0.0),
+                const PixelRect& crop = {});
     ImageF render(const Scene& scene, const PinholeCamera& camera, Output out);
+
+    /// The two halves of render(), for benchmarks: draw() queues the frame, finish() waits for it,
+    /// readback() reads the last drawn frame (waiting for it too).
+    void draw(const Scene& scene, const PinholeCamera& camera, Output out, dvec2 jitter = dvec2(0.0),
+              const PixelRect& crop = {});
+    void finish() const;
+    void readback(ImageF& image);
 
     /// The program for an effect set (compiled on first use).
     const gl::Program& program(const brdf::Params& p, Output out, LightType light = LightType::Directional,
@@ -42,7 +52,7 @@ public:
     const std::string& shaderDir() const { return m_shaderDir; }
 
 private:
-    void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) const;
+    void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam, dvec2 jitter) const;
 
     std::string m_shaderDir;
     std::map<std::string, std::unique_ptr<gl::Program>> m_programs;
@@ -50,6 +60,8 @@ private:
     /// and reallocating a 512x512 float target per render costs more than drawing it.
     std::vector<std::unique_ptr<gl::Framebuffer>> m_fbos;
     gl::Framebuffer& framebuffer(int width, int height);
+    gl::Framebuffer* m_drawn = nullptr;  ///< the framebuffer of the last draw()
+    PixelRect m_drawnCrop;               ///< and what of it was drawn
     unsigned int m_vao = 0, m_vbo = 0;
     std::unique_ptr<class BumpTextures> m_bumpTextures;  ///< issue 10: the bump fields' textures
 };

@@ -54,12 +54,12 @@ measure::LobeFunction chartLobe(const MirrorChart& chart, DirLobe lobe) {
 }
 
 ImageF renderView(const MirrorChart& chart, const DirLobe& lobe, const dvec3& center, double fovDeg, int width,
-                  int height) {
+                  int height, dvec2 jitter) {
     const PinholeCamera cam = PinholeCamera::measurement(chart, center, fovDeg, width, height);
     ImageF img(width, height, 4);
     for (int iy = 0; iy < height; ++iy) {
         for (int ix = 0; ix < width; ++ix) {
-            const dvec3 we = -cam.ray(ix + 0.5, iy + 0.5);
+            const dvec3 we = -cam.ray(ix + 0.5 + jitter.x, iy + 0.5 + jitter.y);
             if (we.z <= 0.0) continue;  // sky / below the horizon: (0, 0, 0, 0)
             const dvec2 uv = chart.coords(we);
             float* p = img.pixel(ix, iy);

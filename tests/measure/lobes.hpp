@@ -33,8 +33,8 @@ measure::LobeFunction chartLobe(const MirrorChart& chart, DirLobe lobe);
 
 /// The measurement view rendered on the CPU: PinholeCamera::measurement(chart, center, fov, W, H);
 /// per pixel we = -ray through its centre; below the horizon (0,0,0,0), else
-/// (L, u, v, areaPerSolidAngle * pixelSolidAngle).
+/// (L, u, v, areaPerSolidAngle * pixelSolidAngle). `jitter` moves every sample point (pixels; supersampling).
 ImageF renderView(const MirrorChart& chart, const DirLobe& lobe, const dvec3& center, double fovDeg, int width,
-                  int height);
+                  int height, dvec2 jitter = dvec2(0.0));
 
 }  // namespace hilite::test

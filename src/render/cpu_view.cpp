@@ -1,0 +1,61 @@
+#include "render/cpu_view.hpp"
+
+#include "brdf/evaluate.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+namespace hilite::render {
+
+void measurePixelCpu(const Scene& scene, const PinholeCamera& cam, const MirrorChart& chart, double px, double py,
+                     float* out) {
+    // The shader's main() in double: the ray through the sample point, unnormalized so that its
+    // length gives cos(gamma) for the pixel's solid angle.
+    const double x = (2.0 * px / cam.width - 1.0) * cam.tanHalfX;
+    const double y = (2.0 * py / cam.height - 1.0) * cam.tanHalfY;
+    const dvec3 d = -cam.back + x * cam.right + y * cam.up;
+    const double len = glm::length(d);
+    const dvec3 we = -d / len;
+    const dvec3 wi = scene.light.type == LightType::Directional
+                         ? scene.light.direction()
+                         : glm::normalize(scene.light.position() - (cam.position - (cam.position.z / we.z) * we));
+    if (we.z <= 0.0 || wi.z <= 0.0) {  // no surface radiance reaches this sample (as in shade.frag)
+        std::fill(out, out + 4, 0.f);
+        return;
+    }
+    const double L = brdf::luminance(surfaceRadiance(scene, cam.position, we));
+    const dvec2 uv = chart.coords(we);
+    const double cosGamma = 1.0 / len;
+    const double pixelArea = (2.0 * cam.tanHalfX / cam.width) * (2.0 * cam.tanHalfY / cam.height);
+    const double w = chart.areaPerSolidAngle(we) * cosGamma * cosGamma * cosGamma * pixelArea;
+    out[0] = float(L);
+    out[1] = float(uv.x);
+    out[2] = float(uv.y);
+    out[3] = float(w);
+}
+
+void renderMeasureCpu(const Scene& scene, const PinholeCamera& camera, ImageF& image, dvec2 jitter,
+                      const PixelRect& crop, int threads) {
+    const PixelRect r = crop.empty() ? PixelRect{0, 0, camera.width, camera.height} : crop;
+    if (r.x < 0 || r.y < 0 || r.x + r.width > camera.width || r.y + r.height > camera.height)
+        throw std::logic_error("renderMeasureCpu: crop outside the image");
+    if (image.width != r.width || image.height != r.height || image.channels != 4) image = ImageF(r.width, r.height, 4);
+    const MirrorChart chart = scene.light.chart();
+    int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    // Below ~16 rows per thread, starting a thread costs more than its rows (~50 us).
+    n = std::clamp(r.height / 16, 1, n);
+    auto rows = [&](int first) {
+        for (int row = first; row < r.height; row += n)  // interleaved rows: the lobe's cost is uneven
+            for (int col = 0; col < r.width; ++col)
+                measurePixelCpu(scene, camera, chart, r.x + col + 0.5 + jitter.x, r.y + row + 0.5 + jitter.y,
+                                image.pixel(col, row));
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < n; ++t) pool.emplace_back(rows, t);
+    rows(0);
+    for (auto& t : pool) t.join();
+}
+
+}  // namespace hilite::render

@@ -1,0 +1,25 @@
+#pragma once
+// The measurement view rendered on the CPU by the double-precision twin: for every pixel, the exitant
+// direction of its camera ray, render::surfaceRadiance (brdf::evaluate in double) and the chart
+// coordinates, exactly the channels shaders/shade.frag writes for Output::Measure. The GL path's
+// float shader against this path is one of the accuracy knobs (issue 7); both feed measure::measureImage.
+
+#include "core/camera.hpp"
+#include "core/image.hpp"
+#include "render/scene.hpp"
+
+namespace hilite::render {
+
+/// \brief Renders (L, u, v, w) per pixel in double (stored as float), on `threads` threads.
+/// \param jitter sample offset from each pixel centre, in pixels (the shader's uJitter).
+/// \param crop a non-empty crop renders only those pixels: `image` is then crop.width x crop.height.
+/// \param threads 0: every core (std::thread::hardware_concurrency).
+/// Pixels that see no surface (we.z <= 0) or whose light is below the plane are (0, 0, 0, 0), as in GL.
+void renderMeasureCpu(const Scene& scene, const PinholeCamera& camera, ImageF& image, dvec2 jitter = dvec2(0.0),
+                      const PixelRect& crop = {}, int threads = 0);
+
+/// The (L, u, v, w) of one sample point (px, py) in pixel units (pixel centres at i + 0.5).
+void measurePixelCpu(const Scene& scene, const PinholeCamera& camera, const MirrorChart& chart, double px, double py,
+                     float* out);
+
+}  // namespace hilite::render
