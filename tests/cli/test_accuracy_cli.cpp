@@ -151,7 +151,8 @@ targets = [1e-2, 1e-3]
     CHECK(csvHeader.rfind("config,scene,setting,knob,", 0) == 0);
     const std::string md = readText(d / "out/summary.md");
     CHECK(md.find("cheapest setting reaching it") != std::string::npos);
-    CHECK(std::regex_search(md, std::regex("\\| 0\\.01 \\| (size 64|size 256|pixel 64) \\|")));
+    // Which setting is cheapest depends on the measured times (machine load): any of the cases may win.
+    CHECK(std::regex_search(md, std::regex("\\| 0\\.01 \\| (size 64|size 256|pixel 64|schlick) \\|")));
     CHECK(fs::exists(d / "out/pareto.dat"));
 }
 
