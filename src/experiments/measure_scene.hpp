@@ -7,6 +7,7 @@
 #include "render/renderer.hpp"
 #include "render/scene.hpp"
 
+#include <optional>
 #include <string>
 
 namespace hilite::experiments {
@@ -17,6 +18,7 @@ struct MeasureSetup {
     measure::Options options;
     int coarseSize = 64;      ///< automatic framing: size of the aiming renders
     int maxRenders = 5;       ///< automatic framing: at most this many renders in all (aiming + final)
+    int maxBlindRenders = 16; ///< blind framing (no CPU twin, .brdf files): at most this many aiming renders
     double fill = 0.8;        ///< automatic framing: the region's half-extent as a fraction of the half-frame
 };
 
@@ -27,19 +29,28 @@ struct Measurement {
     dvec3 center{0, 0, 1};    ///< exitant direction at the centre of the final frame
     double render_ms = 0;     ///< GL draw + readback, all renders
     double measure_ms = 0;    ///< analysis of the final render (and framing arithmetic)
+    std::string framing;      ///< "automatic" (seeded by the twin), "blind" (coarse renders only) or "fixed"
+    std::string framingNote;  ///< blind framing: why it found no highlight, when it gave up ("" otherwise)
+    /// Without a CPU twin (a .brdf file) the error estimate comes from resolution convergence: the same
+    /// frame measured again at half the size (halfWidth x halfHeight); |final - this| per field estimates
+    /// the final measurement's error.
+    std::optional<measure::Shape> halfResolution;
+    int halfWidth = 0, halfHeight = 0;
 };
 
-/// The lobe of a scene as a function of chart coordinates, evaluated by the double twin.
+/// The lobe of a scene as a function of chart coordinates, evaluated by the double twin. Like everything
+/// twin-based below, it throws InputError for a .brdf scene (render::requireTwin).
 measure::LobeFunction twinLobe(const render::Scene& scene);
 
 /// Angular radius (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
 /// direction, searched along +-u and +-v; a seed for framing and for the reference's search disc.
 double twinHalfWidth(const render::Scene& scene, double threshold);
 
-/// Measures the highlight in GL with fixed or automatic framing.
+/// Measures the highlight in GL with fixed or automatic framing. A .brdf scene has no twin to seed the
+/// framing: it is measured by measureBlind (experiments/blind_framing.hpp).
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);
 
-/// The CPU double-precision reference of the same definition (no GL).
+/// The CPU double-precision reference of the same definition (no GL). InputError for a .brdf scene.
 Measurement measureReference(const render::Scene& scene, const measure::Options& options);
 
 /// The measurement camera looking along `center` with the given field of view.

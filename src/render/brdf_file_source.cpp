@@ -111,7 +111,7 @@ std::string brdfBuildError(const brdf_file::BrdfFile& f, const ProgramSources& s
         return inFile.front() + hint(inFile.front()) + more;
     }
     const std::string where = f.path + ":" + std::to_string(f.shaderLine - 1) + ": ";
-    if (!inWrapper.empty() && inWrapper.front().find("`BRDF'") != std::string::npos) {
+    if (!inWrapper.empty() && inWrapper.front().find("`BRDF") != std::string::npos) {
         const auto colon = inWrapper.front().find("error:");
         return where + "BRDF cannot be called as vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) (GLSL " +
                trimCandidates(colon == std::string::npos ? inWrapper.front() : inWrapper.front().substr(colon)) + ")";
