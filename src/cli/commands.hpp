@@ -14,5 +14,6 @@ Action addMeasure(CLI::App& app);
 Action addBrdf(CLI::App& app);
 Action addRun(CLI::App& app);
 Action addMerge(CLI::App& app);
+Action addProbeShader(CLI::App& app);  ///< cli/shader_probe.cpp
 
 }  // namespace hilite::cli

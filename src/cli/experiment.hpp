@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct Configuration {
 struct SweepAxis {
     std::string key;                  ///< "light.incidence"
     std::vector<std::string> values;  ///< as flag values
+    std::vector<SceneArg> args;       ///< one flag argument per value, with its origin (file:line)
     std::vector<int> lines;
 };
 
@@ -52,7 +54,11 @@ Experiment loadExperiment(const std::string& path);
 Experiment parseExperiment(const std::string& text, const std::string& name);
 /// A sweep larger than this is refused: its rows would not fit a results file anyone reads.
 constexpr size_t kMaxConfigurations = 1000000;
+/// Writes dir/experiment.toml (the text, verbatim) and dir/experiment.origin (the original file's absolute
+/// path, against which merge resolves the relative .brdf paths of the copy).
 void writeExperimentCopy(const Experiment& e, const std::string& dir);
+/// The experiment a run's output folder holds (its copy, read as if from experiment.origin when present).
+Experiment loadExperimentCopy(const std::string& dir);
 
 class ExperimentRunner {
 public:
@@ -69,6 +75,9 @@ private:
     ResolvedMeasure resolve(const std::vector<SceneArg>& args, MeasureFlags& flags, nlohmann::json* params) const;
     void applyMatch(std::vector<SceneArg>& args, nlohmann::json& row);
     render::Renderer& renderer();
+    /// Before a .brdf scene is rendered: its notes (once per file), the probe (once per file and values)
+    /// and the renderer's time limit.
+    void prepare(const render::Scene& scene, double shaderTimeout);
 
     const Experiment& m_exp;
     std::string m_backend;
@@ -77,6 +86,7 @@ private:
     std::map<std::string, double> m_matched;  ///< model -> matched width parameter
     std::unique_ptr<gl::Context> m_context;
     std::unique_ptr<render::Renderer> m_renderer;
+    std::set<std::string> m_probed, m_noted;
 };
 
 }  // namespace hilite::cli

@@ -1,12 +1,14 @@
 // Runs the configurations of an experiment and makes its pictures and summary.
 
 #include "cli/experiment.hpp"
+#include "cli/shader_probe.hpp"
 #include "core/error.hpp"
 #include "io/image_io.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 namespace hilite::cli {
@@ -17,9 +19,12 @@ const std::vector<std::string> kMeasureColumns = {
     "model", "incidence_deg", "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg",
     "centroid_u_deg", "centroid_v_deg", "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg",
     "area_deg2", "cos_incidence", "flags", "renders", "size", "fov_deg", "minor_pixels", "method",
-    "matched_parameter", "render_ms", "measure_ms"};
+    "matched_parameter", "brdf_params", "framing", "framing_note", "error_estimate", "error_estimate_from",
+    "render_ms", "measure_ms"};
 const std::vector<std::string> kNotSceneParams = {"help", "scene", "output", "float", "exposure", "json",
-                                                  "reference", "gl-backend", "incidence"};
+                                                  "reference", "gl-backend", "incidence", "shader-timeout"};
+/// With --brdf, the built-in model's flags mean nothing: their columns are left empty (null).
+const std::vector<std::string> kBrdfFileParams = {"brdf", "param", "tangent-angle"};
 
 std::string num(double v) {
     std::ostringstream s;
@@ -62,6 +67,9 @@ ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backe
         std::vector<SceneArg> args = e.base;
         args.insert(args.end(), e.match.begin(), e.match.end());
         ResolvedMeasure target = resolve(args, mf, nullptr);
+        if (target.scene.brdfFile)
+            throw InputError(e.path + ": [match]: matching widths needs a CPU twin, and a .brdf file has none "
+                                      "(set its parameters by hand)");
         target.scene.light.incidenceDeg = 0;
         m_targetMajorDeg = rad2deg(experiments::twinHalfWidth(target.scene, target.setup.options.threshold));
     }
@@ -75,6 +83,19 @@ render::Renderer& ExperimentRunner::renderer() {
         m_renderer = std::make_unique<render::Renderer>(*m_context);
     }
     return *m_renderer;
+}
+
+void ExperimentRunner::prepare(const render::Scene& scene, double shaderTimeout) {
+    if (!scene.brdfFile) return;
+    // Each .brdf file with each set of values passes the probe once (cli/shader_probe.hpp).
+    const std::string key = scene.brdfFile->path + "|" + brdf_file::valuesText(*scene.brdfFile) + "|" +
+                            render::toString(scene.light.type);
+    if (m_probed.insert(key).second) {
+        if (m_noted.insert(scene.brdfFile->path).second)
+            for (const std::string& note : scene.brdfFile->notes) std::cerr << "hilite: note: " << note << "\n";
+        probeShader(scene, m_backend, shaderTimeout);
+    }
+    renderer().setShaderTimeLimit(shaderTimeout);
 }
 
 ResolvedMeasure ExperimentRunner::resolve(const std::vector<SceneArg>& args, MeasureFlags& flags,
@@ -102,8 +123,15 @@ ResolvedMeasure ExperimentRunner::resolve(const std::vector<SceneArg>& args, Mea
     if (params)
         for (const CLI::Option* o : app.get_options())
             if (isSceneParam(*o)) {
-                const std::string v = o->count() ? o->results().back() : o->get_default_str();
-                (*params)[paramName(*o)] = typed(v);
+                std::string v = o->count() ? o->results().back() : o->get_default_str();
+                if (o->get_multi_option_policy() == CLI::MultiOptionPolicy::TakeAll) {  // --param: all of them
+                    v.clear();
+                    for (const auto& x : o->results()) v += (v.empty() ? "" : ",") + x;
+                }
+                const bool builtinOnly = r.scene.brdfFile && sectionOf(*o) == "material" &&
+                                         std::find(kBrdfFileParams.begin(), kBrdfFileParams.end(),
+                                                   o->get_lnames().front()) == kBrdfFileParams.end();
+                (*params)[paramName(*o)] = builtinOnly ? nlohmann::json(nullptr) : typed(v);
             }
     return r;
 }
@@ -112,6 +140,9 @@ void ExperimentRunner::applyMatch(std::vector<SceneArg>& args, nlohmann::json& r
     if (m_exp.match.empty()) return;
     MeasureFlags f;
     ResolvedMeasure r = resolve(args, f, nullptr);
+    if (r.scene.brdfFile)
+        throw InputError(m_exp.path + ": [match]: matching widths needs a CPU twin, and " + r.scene.brdfFile->path +
+                         " (a .brdf file) has none: set its parameters by hand");
     r.scene.light.incidenceDeg = 0;
     const std::string key = brdf::toString(r.scene.brdf.model);
     const bool exponent = brdf::usesExponent(r.scene.brdf.model);
@@ -143,6 +174,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     if (r.angles.size() != 1)
         throw InputError(m_exp.path + ": light.incidence: one angle per configuration (sweep it with [[sweep]])");
     for (auto& [k, v] : params.items()) row[k] = v;
+    if (!f.reference) prepare(r.scene, f.scene.shaderTimeout);
     const auto m = f.reference ? experiments::measureReference(r.scene, r.setup.options)
                                : experiments::measureGl(renderer(), r.scene, r.setup);
     const nlohmann::json measured =
@@ -178,6 +210,7 @@ void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohma
                 applyMatch(args, ignored);
                 MeasureFlags f;
                 ResolvedMeasure r = resolve(args, f, nullptr);
+                prepare(r.scene, f.scene.shaderTimeout);
                 const PinholeCamera cam = viewCamera(f.scene, View::Photo, r.scene, tw, th);
                 const ImageF tile = renderer().render(r.scene, cam, render::Output::Color);
                 double peak = 0;

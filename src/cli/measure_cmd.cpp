@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "cli/scene_file.hpp"
+#include "cli/shader_probe.hpp"
 #include "core/error.hpp"
 #include "experiments/measure_scene.hpp"
 
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <tuple>
 
 namespace hilite::cli {
 
@@ -20,11 +22,17 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
                    int height, const std::string& method) {
     const measure::Shape& r = m.shape;
     nlohmann::json j;
-    j["model"] = brdf::toString(s.brdf.model);
-    if (brdf::usesExponent(s.brdf.model)) j["exponent"] = s.brdf.exponent;
-    else j["roughness"] = s.brdf.roughness;
-    j["fresnel"] = brdf::toString(s.brdf.fresnel);
-    j["geometry"] = brdf::toString(s.brdf.geometry);
+    if (s.brdfFile) {  // a .brdf file: its name stands for the model, its values for the parameters
+        j["model"] = s.brdfFile->path.substr(s.brdfFile->path.rfind('/') + 1);
+        j["brdf"] = s.brdfFile->path;
+        j["brdf_params"] = brdf_file::valuesText(*s.brdfFile);
+    } else {
+        j["model"] = brdf::toString(s.brdf.model);
+        if (brdf::usesExponent(s.brdf.model)) j["exponent"] = s.brdf.exponent;
+        else j["roughness"] = s.brdf.roughness;
+        j["fresnel"] = brdf::toString(s.brdf.fresnel);
+        j["geometry"] = brdf::toString(s.brdf.geometry);
+    }
     j["incidence_deg"] = s.light.incidenceDeg;
     j["light"] = render::toString(s.light.type);
     // Under a point light each point of the plane has its own wi: the measured lobe is the eye's view.
@@ -50,6 +58,22 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["minor_pixels"] = std::isfinite(r.minor_pixels) ? nlohmann::json(r.minor_pixels) : nlohmann::json(nullptr);
     j["render_ms"] = m.render_ms;
     j["measure_ms"] = m.measure_ms;
+    j["framing"] = m.framing;
+    if (!m.framingNote.empty()) j["framing_note"] = m.framingNote;
+    if (m.halfResolution) {
+        // No CPU twin for a .brdf: the error is estimated by measuring the same frame at half the size.
+        const measure::Shape& h = *m.halfResolution;
+        nlohmann::json e;
+        for (auto [key, a, b] : {std::tuple{"aspect", r.aspect, h.aspect}, {"eccentricity", r.eccentricity, h.eccentricity},
+                                 {"major_deg", r.major_deg, h.major_deg}, {"minor_deg", r.minor_deg, h.minor_deg},
+                                 {"centroid_u_deg", r.centroid_u_deg, h.centroid_u_deg},
+                                 {"centroid_v_deg", r.centroid_v_deg, h.centroid_v_deg}})
+            e[key] = std::isfinite(a - b) ? nlohmann::json(std::abs(a - b)) : nlohmann::json(nullptr);
+        j["error_estimate"] = e;
+        j["error_estimate_from"] = "resolution convergence (no CPU twin for .brdf)";
+        j["error_estimate_sizes"] = std::to_string(width) + "x" + std::to_string(height) + " vs " +
+                                    std::to_string(m.halfWidth) + "x" + std::to_string(m.halfHeight);
+    }
     return j;
 }
 
@@ -62,10 +86,18 @@ void printTableRow(const nlohmann::json& j) {
     std::string flags;
     for (const auto& fl : j["flags"]) flags += (flags.empty() ? "" : ",") + fl.get<std::string>();
     auto num = [&](const char* k) { return j[k].is_null() ? NAN : j[k].get<double>(); };
-    std::printf("%-9s %6.2f %8.5f %8.5f %9.4f %9.4f %7.2f %8.4f %8.4f %8.4f %8.4f  %s\n",
+    std::printf("%-9s %6.2f %8.5f %8.5f %9.4f %9.4f %7.2f %8.4f %8.4f %8.4f %8.4f  %s",
                 j["model"].get<std::string>().c_str(), num("incidence_deg"), num("aspect"), num("eccentricity"),
                 num("major_deg"), num("minor_deg"), num("orientation_deg"), num("centroid_u_deg"),
                 num("centroid_v_deg"), num("fwhm_u_deg"), num("fwhm_v_deg"), flags.c_str());
+    if (j.contains("error_estimate")) {
+        auto err = [&](const char* k) { return j["error_estimate"][k].is_null() ? NAN : j["error_estimate"][k].get<double>(); };
+        std::printf("  error estimate (resolution convergence, no CPU twin for .brdf): aspect %.1e, major %.1e, "
+                    "minor %.1e deg",
+                    err("aspect"), err("major_deg"), err("minor_deg"));
+    }
+    if (j.contains("framing_note")) std::printf("  note: %s", j["framing_note"].get<std::string>().c_str());
+    std::printf("\n");
 }
 
 ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
@@ -87,6 +119,9 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
         throw InputError("--boundary: unknown '" + f.boundary + "' (allowed: subpixel, pixel)");
     setup.options.subpixel = f.boundary == "subpixel";
     if (f.scene.view != "measure") throw InputError("--view: measure always uses the measurement view");
+    if (f.reference && scene.brdfFile)
+        throw InputError("--reference: no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU); the GL "
+                         "measurement reports error_estimate from resolution convergence instead");
     return r;
 }
 
@@ -99,9 +134,13 @@ int runMeasure(const MeasureFlags& f) {
 
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<render::Renderer> renderer;
+    if (scene.brdfFile)
+        for (const std::string& note : scene.brdfFile->notes) std::cerr << "hilite: note: " << note << "\n";
     if (!f.reference) {
+        probeShader(scene, f.scene.backend, f.scene.shaderTimeout);  // before this process runs it
         context = std::make_unique<gl::Context>(parseBackendFlag(f.scene.backend));
         renderer = std::make_unique<render::Renderer>(*context);
+        renderer->setShaderTimeLimit(f.scene.shaderTimeout);
     }
     if (!f.json) printTableHeader();
     for (double angle : resolved.angles) {

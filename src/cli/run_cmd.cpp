@@ -92,7 +92,7 @@ int runMerge(const MergeFlags& f) {
         if (experimentFile.empty()) experimentFile = copy;
         for (auto& r : experiments::readRows(s + "/results.jsonl")) rows.push_back(std::move(r));
     }
-    const Experiment exp = loadExperiment(experimentFile);
+    const Experiment exp = loadExperimentCopy(experimentFile.substr(0, experimentFile.rfind('/')));
     std::set<long> seen;
     for (const auto& r : rows)
         if (!seen.insert(r["config"].get<long>()).second)

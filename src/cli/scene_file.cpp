@@ -89,6 +89,10 @@ void addKey(const std::string& name, const std::string& section, const std::stri
     SceneArg arg{"--" + opt->get_lnames().front(), "", where(name, node) + ": " + full};
     if (!valueText(node, arg.value))
         throw InputError(arg.origin + ": expected a number, string, boolean or flat array");
+    // A .brdf named in a file is found beside that file, whatever the current directory.
+    const auto slash = name.rfind('/');
+    if (arg.flag == "--brdf" && !arg.value.empty() && arg.value[0] != '/' && slash != std::string::npos)
+        arg.value = name.substr(0, slash + 1) + arg.value;
     if (opt->get_expected_max() == 0) {  // a switch (--json): only true/false make sense
         if (!node.is_boolean()) throw InputError(arg.origin + ": expected true or false");
         if (arg.value == "false") return;
@@ -183,7 +187,7 @@ void assignSections(CLI::App& app, size_t firstOption) {
         {"light", "Light"},     {"intensity", "Light"}, {"light-distance", "Light"}};
     static const std::map<std::string, std::string> camera = {
         {"size", "Camera"}, {"fov", "Camera"}, {"view", "Camera"}, {"elevation", "Camera"},
-        {"distance", "Camera"}, {"gl-backend", "Camera"}};
+        {"distance", "Camera"}, {"gl-backend", "Camera"}, {"shader-timeout", "Camera"}};
     static const std::map<std::string, std::string> measurement = {
         {"threshold", "Measurement"}, {"min-pixels", "Measurement"}, {"boundary", "Measurement"},
         {"reference", "Measurement"}};
