@@ -118,7 +118,7 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_option("--shader-timeout", f.shaderTimeout,
                    "seconds a .brdf shader may take on a probe render in a child process, and on each compile and "
-                   "draw, before it is stopped (exit 2), in (0, 3600]")
+                   "draw, before it is stopped (exit 2), in [0.001, 3600]")
         ->capture_default_str();
 }
 
