@@ -309,10 +309,11 @@ void assign(BrdfFile& file, const std::string& assignments) {
         else throw InputError(file.path + ": --param '" + assignments + "': expected NAME=VALUE");
     }
     if (pairs.empty()) throw InputError(file.path + ": --param '" + assignments + "': expected NAME=VALUE");
-    for (const auto& [name, text] : pairs) {
+    for (const auto& pair : pairs) {
+        const std::string &name = pair.first, &text = pair.second;
         const std::string given = "--param " + name + "=" + text + ": ";
         auto it = std::find_if(file.parameters.begin(), file.parameters.end(),
-                               [&](const Parameter& p) { return p.name == name; });
+                               [&name](const Parameter& p) { return p.name == name; });
         if (it == file.parameters.end()) {
             std::string declared;
             for (const Parameter& p : file.parameters) declared += (declared.empty() ? "" : ", ") + p.name;

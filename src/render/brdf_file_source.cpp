@@ -48,7 +48,9 @@ std::string trimCandidates(std::string s) {
 ProgramSources assembleBrdfFile(const brdf_file::BrdfFile& f, Output out, const std::string& dir) {
     ProgramSources src;
     src.vertex.push_back({"shaders/plane.vert", 1, readShaderFile(dir + "/plane.vert")});
-    std::string config = "#version 450 core\n";
+    // BRDF Explorer's own language version: names that became keywords later (shared, buffer, coherent,
+    // readonly, ...) stay usable. Linking it with the 4.50 vertex stage is allowed for core profiles.
+    std::string config = "#version 410 core\n";
     config += out == Output::Measure ? "#define HILITE_OUTPUT_MEASURE 1\n" : "#define HILITE_OUTPUT_COLOR 1\n";
     src.fragment.push_back({"<generated config>", 1, config});
     src.fragment.push_back({"<generated .brdf dispatch>", 1,

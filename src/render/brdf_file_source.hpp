@@ -1,6 +1,6 @@
 #pragma once
 // The fragment program of a scene whose BRDF is a BRDF Explorer .brdf file. Pieces, in order:
-//   <generated config>           #version 450 core and the output/light defines (as for built-in models)
+//   <generated config>           #version 410 core (BRDF Explorer's version) and the output/light defines
 //   <generated .brdf dispatch>   the prototype vec3 brdf(vec3 wi, vec3 wo)
 //   shaders/shade.frag           the per-pixel shading, unchanged
 //   PATH                         "uniform float n;" etc., each on the line of its declaration
@@ -9,7 +9,8 @@
 //                                tangent angle
 // The .brdf's text comes after hilite's, so a name both define (a uniform, a function) is reported at the
 // .brdf's own line; its '#' lines were comments already (brdf_file::parse), so it cannot #define anything
-// into hilite's code. BRDF Explorer compiles these shaders as GLSL 4.10 (core); 4.50 core accepts them.
+// into hilite's code. BRDF Explorer compiles these shaders as GLSL 4.10 (its templates say #version 410),
+// and so does hilite: shade.frag is 4.10-clean, and the vertex stage (4.50) links with it.
 
 #include "brdf_file/brdf_file.hpp"
 #include "render/shader_source.hpp"

@@ -132,7 +132,8 @@ TEST_CASE("render::Renderer compiles BRDF Explorer's GLSL style") {
                              "    if (NdotL < 0 || dot(N, V) < 0) return vec3(0);\n"
                              "    vec3 H = normalize(L+V);\n"
                              "    float val = pow(max(0,dot(N,H)),n) * (n+2)/(2*PI);\n"
-                             "    return vec3(sqr(1) * val);\n}\n::end shader\n";
+                             "    float shared = 1.0, buffer = 1.0;  // keywords since GLSL 4.30, names in 4.10\n"
+                             "    return vec3(sqr(1) * val * shared * buffer);\n}\n::end shader\n";
     CHECK(buildError(text) == "");
     // Negative and NaN results become 0, as BRDF Explorer clamps.
     render::Scene s;
