@@ -64,7 +64,8 @@ TEST_CASE("render::Renderer pixels are finite, non-negative and match the double
 
 TEST_CASE("render::Renderer sizes and views") {
     auto& env = test::glEnv();
-    for (auto [w, h] : {std::pair{1, 1}, {7, 3}, {128, 128}, {300, 200}}) {
+    for (const auto& size : {std::pair{1, 1}, {7, 3}, {128, 128}, {300, 200}}) {
+        const int w = size.first, h = size.second;  // not a structured binding: clang cannot CAPTURE one
         render::Scene s = makeScene(brdf::Model::GGX, 45);
         const auto r = test::compareWithTwin(*env.renderer, s, PinholeCamera::photo(45, 180, 10, 40, w, h));
         CAPTURE(w);
