@@ -66,6 +66,9 @@ public:
     ~ExperimentRunner();
     /// The fixed CSV columns: config, the sweep keys, every scene parameter, every measurement field.
     const std::vector<std::string>& columns() const { return m_columns; }
+    /// Probes every .brdf shader (file and values) the configurations i with i mod shardN = shardK - 1 use,
+    /// so that a shader that does not build or runs too long fails before any result file is written.
+    void probeAll(const std::vector<Configuration>& configs, int shardK, int shardN);
     /// Measures one configuration: one JSON row.
     nlohmann::json measure(const Configuration& c);
     /// Plots, contact sheet and summary.md from the complete rows. seconds < 0: unknown (merge).

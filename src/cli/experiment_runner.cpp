@@ -98,6 +98,22 @@ void ExperimentRunner::prepare(const render::Scene& scene, double shaderTimeout)
     renderer().setShaderTimeLimit(shaderTimeout);
 }
 
+void ExperimentRunner::probeAll(const std::vector<Configuration>& configs, int shardK, int shardN) {
+    std::set<std::string> seen;
+    for (const Configuration& c : configs) {
+        if (c.index % shardN != shardK - 1) continue;
+        // Only the flags the probe depends on decide whether a configuration needs its own probe.
+        std::string key;
+        for (const SceneArg& a : c.args)
+            if (a.flag == "--brdf" || a.flag == "--param" || a.flag == "--light" || a.flag == "--reference")
+                key += a.flag + "=" + a.value + "\n";
+        if (key.find("--brdf=") == std::string::npos || !seen.insert(key).second) continue;
+        MeasureFlags f;
+        const ResolvedMeasure r = resolve(c.args, f, nullptr);
+        if (!f.reference) prepare(r.scene, f.scene.shaderTimeout);
+    }
+}
+
 ResolvedMeasure ExperimentRunner::resolve(const std::vector<SceneArg>& args, MeasureFlags& flags,
                                           nlohmann::json* params) const {
     CLI::App app;

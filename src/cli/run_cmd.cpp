@@ -53,6 +53,7 @@ int runExperiment(const RunFlags& f) {
     if (access(dir.c_str(), W_OK) != 0) throw InputError("-o: cannot write to '" + dir + "'");
     const auto configs = exp.configurations();  // validates every configuration before anything runs
     ExperimentRunner runner(exp, f.backend);
+    runner.probeAll(configs, shardK, shardN);  // a .brdf that does not build or runs too long: nothing written
     experiments::ResultsWriter writer(dir, runner.columns(), f.resume);
     writeExperimentCopy(exp, dir);
     size_t todo = 0;

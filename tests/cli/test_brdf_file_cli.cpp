@@ -269,6 +269,16 @@ TEST_CASE("cli::run sweeps a .brdf parameter; rows record it; shards merge; [mat
     for (std::string line; std::getline(m, line);) ++n;
     CHECK(n == 4);
 
+    // A .brdf that does not build fails before any result file is written.
+    d.write("exp/brdfs/broken.brdf", "analytic\n::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) "
+                                     "{ return nothing; }\n::end shader\n");
+    const std::string broken = d.write("exp/broken.toml", "[[sweep]]\nkey = \"material.brdf\"\n"
+                                                          "values = [\"brdfs/b.brdf\", \"brdfs/broken.brdf\"]\n");
+    const auto b = hilite("run " + broken + " -o " + (d / "broken"));
+    CHECK(b.code == 2);
+    CHECK(b.out.find("broken.brdf:3:") != std::string::npos);
+    CHECK_FALSE(fs::exists(d / "broken/results.csv"));
+
     const std::string match = d.write("exp/m.toml", "[scene.material]\nbrdf = \"brdfs/b.brdf\"\n[match]\nmaterial.model = \"ggx\"\n"
                                                     "[[sweep]]\nkey = \"light.incidence\"\nvalues = [0]\n");
     const auto r = hilite("run " + match + " -o " + (d / "match"));
