@@ -51,7 +51,9 @@ TEST_CASE("experiments::measureGl GGX NDF lobe matches the reference table") {
 }
 
 TEST_CASE("experiments::measureGl narrow microfacet lobes narrow as cos theta_i") {
-    for (auto [model, param] : {std::pair{brdf::Model::Blinn, 5000.0}, {brdf::Model::Beckmann, 0.02}}) {
+    for (const auto& c : {std::pair{brdf::Model::Blinn, 5000.0}, {brdf::Model::Beckmann, 0.02}}) {
+        const brdf::Model model = c.first;  // named variables: clang cannot CAPTURE a structured binding
+        const double param = c.second;
         for (double inc = 0; inc <= 75; inc += 15) {
             CAPTURE(inc);
             CAPTURE(param);
@@ -76,8 +78,10 @@ TEST_CASE("experiments::measureGl eccentricity rises monotonically for microface
 }
 
 TEST_CASE("experiments::measureGl agrees with the CPU double reference") {
-    for (auto [model, param] : {std::pair{brdf::Model::Phong, 300.0}, {brdf::Model::Blinn, 300.0},
-                                {brdf::Model::Beckmann, 0.15}, {brdf::Model::GGX, 0.2}}) {
+    for (const auto& c : {std::pair{brdf::Model::Phong, 300.0}, {brdf::Model::Blinn, 300.0},
+                          {brdf::Model::Beckmann, 0.15}, {brdf::Model::GGX, 0.2}}) {
+        const brdf::Model model = c.first;  // named variables: clang cannot CAPTURE a structured binding
+        const double param = c.second;
         for (double inc : {0.0, 20.0, 45.0, 70.0, 80.0}) {
             for (auto g : {brdf::Geometry::Implicit, brdf::Geometry::Smith}) {
                 render::Scene s = scene(model, param, inc);
