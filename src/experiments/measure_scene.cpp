@@ -1,6 +1,7 @@
 #include "experiments/measure_scene.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "experiments/diagnose.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -141,6 +142,7 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
     ++m.renders;
     t0 = Clock::now();
     m.shape = measure::measureImage(img.data.data(), img.width, img.height, setup.options);
+    diagnose(scene, setup.options.threshold, Path::Gl, m.shape);  // mirror, sub-pixel lobes, float limits
     m.measure_ms += msSince(t0);
     m.fovDeg = frame.fovDeg;
     m.center = frame.center;
@@ -152,6 +154,7 @@ Measurement measureReference(const render::Scene& scene, const measure::Options&
     const auto t0 = Clock::now();
     const double r = twinHalfWidth(scene, options.threshold);
     m.shape = measure::measureReference(twinLobe(scene), options, std::min(4.0 * r, kPi / 2));
+    diagnose(scene, options.threshold, Path::Reference, m.shape);
     m.measure_ms = msSince(t0);
     return m;
 }

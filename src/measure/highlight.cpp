@@ -17,6 +17,8 @@ const char* toString(Flag f) {
         case Flag::UnderResolved: return "under_resolved";
         case Flag::NoHighlight: return "no_highlight";
         case Flag::CoversFrame: return "covers_frame";
+        case Flag::Mirror: return "mirror";
+        case Flag::EffectivelyMirror: return "effectively_mirror";
     }
     return "unknown";
 }

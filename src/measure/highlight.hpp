@@ -19,9 +19,14 @@ enum class Flag {
     UnderResolved,  ///< fewer than Options::minPixelsAcross pixels across the minor axis
     NoHighlight,    ///< peak is 0 (or nothing visible): the shape fields are left 0
     CoversFrame,    ///< every visible pixel is in the region: the frame shows no outside
+    Mirror,         ///< a perfect mirror (roughness 0): the lobe is a delta with no finite shape; fields left 0
+    /// the lobe's half-width is below what float32 directions resolve (experiments/diagnose.hpp): the GL
+    /// numbers are reported but quantization-limited; the double reference still measures it
+    EffectivelyMirror,
 };
 
-/// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame" (the CLI/JSON spelling).
+/// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame", "mirror",
+/// "effectively_mirror" (the CLI/JSON spelling).
 const char* toString(Flag);
 std::ostream& operator<<(std::ostream&, Flag);
 

@@ -1,0 +1,43 @@
+#pragma once
+// Diagnoses the measurement can only make knowing the scene: the double twin knows the lobe, the pixels do
+// not. A delta lobe (roughness 0) is a `mirror`, not `no_highlight`; a lobe that falls between the pixel
+// centres of a fixed frame is `under_resolved`, not `no_highlight`; a lobe narrower than float32 directions
+// resolve is `effectively_mirror` in GL.
+
+#include "measure/highlight.hpp"
+#include "render/scene.hpp"
+
+namespace hilite::experiments {
+
+/// The spacing of float32 directions near a unit vector: the components of a unit vector near 1 are
+/// rounded to 2^-24 (half an ulp of 1), so the shader knows each exitant direction, and the chart
+/// coordinates it writes, only to about this many radians.
+constexpr double kFloatDirectionStep = 5.9604644775390625e-8;  // 2^-24
+
+/// Below this minor half-width (rad) GL flags `effectively_mirror`: 8 float direction steps, by analogy
+/// with `under_resolved` (8 pixels across). Measured (GL 512^2 automatic framing against the double
+/// reference, docs/hard_cases.md): the semi-axes and aspect stay within 0.3% down to a half-width of 9e-7
+/// rad, reach 1% at 2-3e-7 rad and 10-50% at 1e-7; the error grows as ~3e-9 rad / half-width.
+constexpr double kEffectivelyMirrorHalfWidth = 8.0 * kFloatDirectionStep;  // 4.8e-7 rad
+
+/// The twin's lobe about the mirror direction.
+struct LobeWidths {
+    double peak = 0;   ///< lobe value at the mirror direction (0: no lobe there)
+    double minor = 0;  ///< narrowest half-width (rad) at `threshold` of `peak`
+    double major = 0;  ///< widest half-width (rad)
+};
+
+/// Half-widths of the twin's lobe along 16 azimuths about the mirror direction. An azimuth on which the
+/// horizon comes before the threshold does not count: there the horizon, not the lobe, ends the region.
+LobeWidths twinLobeWidths(const render::Scene& scene, double threshold);
+
+/// Whether any light reaches the plane (irradiance > 0 from above the horizon).
+bool lightReaches(const render::Scene& scene);
+
+enum class Path { Gl, Reference };
+
+/// Adds the diagnoses above to a measurement of `scene` by `path` (replacing no_highlight where the lobe
+/// exists). `threshold`: the measurement's fraction of the peak.
+void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape);
+
+}  // namespace hilite::experiments
