@@ -158,16 +158,19 @@ float F_Dielectric(float cosTheta_i, float eta) {
 // tan, finite at grazing, Lagarde 2013): a^2 + b^2 = sqrt((eta^2 - k^2 - sin^2)^2 + 4 eta^2 k^2),
 // a^2 = (a^2 + b^2 + eta^2 - k^2 - sin^2) / 2, Rs = (a^2+b^2 - 2a cos + cos^2) / (a^2+b^2 + 2a cos + cos^2),
 // Rp = Rs (cos^2 (a^2+b^2) - 2a cos sin^2 + sin^4) / (cos^2 (a^2+b^2) + 2a cos sin^2 + sin^4).
+// Stable forms (see src/brdf/fresnel.hpp): numerators as sums of squares, (a - cos)^2 + b^2 and
+// (a cos - sin^2)^2 + b^2 cos^2, never below 0 (the differences rounded to -1e-7 as eta -> 1: negative
+// radiance); a^2, b^2 each from the sum that does not cancel.
 vec2 F_ConductorSP(float cosTheta_i, float eta, float k) {
+    if (eta == 1.0 && k == 0.0) return vec2(0.0);  // matched index: no interface, F = 0 (0/0 at grazing)
     float c = clamp(cosTheta_i, 0.0, 1.0), c2 = c * c, s2 = 1.0 - c2;
-    float t0 = eta * eta - k * k - s2;
-    float a2b2 = sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
-    float a = sqrt(max(0.0, 0.5 * (a2b2 + t0)));
-    float t1 = a2b2 + c2, t2 = 2.0 * a * c;
-    if (t1 + t2 == 0.0) return vec2(0.0);  // matched index (eta = 1, k = 0) at grazing: 0/0; F = 0 as elsewhere
-    float Rs = (t1 - t2) / (t1 + t2);
-    float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
-    return vec2(Rs, Rs * (t3 - t4) / (t3 + t4));
+    float t0 = eta * eta - k * k - s2, e2k2 = 2.0 * eta * eta * k * k;
+    float a2b2 = sqrt(t0 * t0 + 2.0 * e2k2);
+    float a2 = t0 >= 0.0 ? 0.5 * (a2b2 + t0) : e2k2 / (a2b2 - t0);
+    float b2 = t0 > 0.0 ? e2k2 / (a2b2 + t0) : 0.5 * (a2b2 - t0);
+    float a = sqrt(a2), ac = a * c;
+    float Rs = ((a - c) * (a - c) + b2) / ((a + c) * (a + c) + b2);
+    return vec2(Rs, Rs * ((ac - s2) * (ac - s2) + b2 * c2) / ((ac + s2) * (ac + s2) + b2 * c2));
 }
 // Exact unpolarized conductor Fresnel: F = (Rs + Rp) / 2.
 float F_Conductor(float cosTheta_i, float eta, float k) {

@@ -48,18 +48,23 @@ inline double F_Dielectric(double cosTheta_i, double eta) {
 /// Rp = Rs (cos^2 (a^2 + b^2) - 2a cos sin^2 + sin^4) / (cos^2 (a^2 + b^2) + 2a cos sin^2 + sin^4).
 /// Born & Wolf sec. 14.2; Rp without tan(theta) (finite at grazing) as in Lagarde 2013 "Memo on Fresnel
 /// equations". Equal to pbrt-v4's complex FrComplex (tests); k = 0 gives F_Dielectric, TIR included.
-/// The denominators vanish for a^2 + b^2 = 0 at cos = 0 (eta = 1, k = 0: a matched index at grazing) and
-/// at cos = 1 (eta = k = 0, which the CLI rejects: eta >= 0.01).
+/// Stable forms: the numerators as sums of squares, a^2 + b^2 - 2a cos + cos^2 = (a - cos)^2 + b^2 and
+/// cos^2 (a^2 + b^2) - 2a cos sin^2 + sin^4 = (a cos - sin^2)^2 + b^2 cos^2, never below 0 (the textbook
+/// differences of near-equal terms rounded to -1e-7 in float as eta -> 1, F -> 0: negative radiance);
+/// a^2 and b^2 each from the sum that does not cancel (2 eta^2 k^2 / (a^2 + b^2 -+ t0)). The denominators
+/// vanish only for a^2 + b^2 = 0 at cos = 0 (eta = 1, k = 0: guarded) or at cos = 1 (eta = k = 0, which
+/// the CLI rejects: eta >= 0.01).
 inline dvec2 F_ConductorSP(double cosTheta_i, double eta, double k) {
+    // Matched index: no interface, F = 0 at every angle (at grazing the formulas are 0/0).
+    if (eta == 1.0 && k == 0.0) return dvec2(0.0);
     const double c = std::clamp(cosTheta_i, 0.0, 1.0), c2 = c * c, s2 = 1.0 - c2;
-    const double t0 = eta * eta - k * k - s2;
-    const double a2b2 = std::sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
-    const double a = safeSqrt(0.5 * (a2b2 + t0));
-    const double t1 = a2b2 + c2, t2 = 2.0 * a * c;
-    if (t1 + t2 == 0.0) return dvec2(0.0);  // matched index at grazing: 0/0; F = 0 there as at every angle
-    const double Rs = (t1 - t2) / (t1 + t2);
-    const double t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
-    return {Rs, Rs * (t3 - t4) / (t3 + t4)};
+    const double t0 = eta * eta - k * k - s2, e2k2 = 2.0 * eta * eta * k * k;
+    const double a2b2 = std::sqrt(t0 * t0 + 2.0 * e2k2);
+    const double a2 = t0 >= 0.0 ? 0.5 * (a2b2 + t0) : e2k2 / (a2b2 - t0);  // (a2b2 + t0) / 2 without cancellation
+    const double b2 = t0 > 0.0 ? e2k2 / (a2b2 + t0) : 0.5 * (a2b2 - t0);   // (a2b2 - t0) / 2 likewise
+    const double a = std::sqrt(a2), ac = a * c;
+    const double Rs = ((a - c) * (a - c) + b2) / ((a + c) * (a + c) + b2);
+    return {Rs, Rs * ((ac - s2) * (ac - s2) + b2 * c2) / ((ac + s2) * (ac + s2) + b2 * c2)};
 }
 
 /// Exact unpolarized conductor Fresnel: F = (Rs + Rp) / 2. F(0) = ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2).
