@@ -1,5 +1,6 @@
 #include "experiments/diagnose.hpp"
 
+#include "brdf/evaluate.hpp"
 #include "experiments/measure_scene.hpp"
 
 #include <algorithm>
@@ -50,6 +51,19 @@ LobeWidths twinLobeWidths(const render::Scene& scene, double threshold) {
     return w;
 }
 
+bool unboundedAtHorizon(const render::Scene& scene, const measure::Shape& shape) {
+    if (!(shape.peak > 0)) return false;
+    const dvec3 w = scene.light.chart().direction(deg2rad(shape.peak_u_deg), deg2rad(shape.peak_v_deg));
+    const double horizontal = std::hypot(w.x, w.y);
+    if (!(w.z > 0 && w.z < 0.05 && horizontal > 0)) return false;
+    const dvec3 eye = render::eyePosition(scene);
+    auto lobeAt = [&](double z) {
+        const dvec3 d = glm::normalize(dvec3(w.x / horizontal, w.y / horizontal, z));
+        return brdf::luminance(render::surfaceRadiance(scene, eye, d));
+    };
+    return lobeAt(1e-6 * w.z) > 100.0 * lobeAt(1e-3 * w.z);
+}
+
 bool lightReaches(const render::Scene& scene) {
     const render::Light& l = scene.light;
     if (l.type == render::LightType::Point) return l.intensity > 0 && l.position().z > 0;
@@ -63,6 +77,7 @@ void diagnose(const render::Scene& scene, double threshold, Path path, measure::
         if (lightReaches(scene)) replace(shape, Flag::NoHighlight, Flag::Mirror);
         return;
     }
+    if (unboundedAtHorizon(scene, shape)) shape.flags.push_back(Flag::UnboundedAtHorizon);
     const LobeWidths w = twinLobeWidths(scene, threshold);
     if (!(w.peak > 0)) return;
     // The lobe exists, yet no pixel centre of a fixed frame sees it: the frame is too coarse for it.

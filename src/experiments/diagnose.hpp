@@ -2,7 +2,8 @@
 // Diagnoses the measurement can only make knowing the scene: the double twin knows the lobe, the pixels do
 // not. A delta lobe (roughness 0) is a `mirror`, not `no_highlight`; a lobe that falls between the pixel
 // centres of a fixed frame is `under_resolved`, not `no_highlight`; a lobe narrower than float32 directions
-// resolve is `effectively_mirror` in GL.
+// resolve is `effectively_mirror` in GL; a lobe that grows without bound towards the horizon (G = 1) is
+// `unbounded_at_horizon`: its measured peak is wherever the sampling stopped.
 
 #include "measure/highlight.hpp"
 #include "render/scene.hpp"
@@ -30,6 +31,11 @@ struct LobeWidths {
 /// Half-widths of the twin's lobe along 16 azimuths about the mirror direction. An azimuth on which the
 /// horizon comes before the threshold does not count: there the horizon, not the lobe, ends the region.
 LobeWidths twinLobeWidths(const render::Scene& scene, double threshold);
+
+/// Whether the twin's lobe grows without bound towards the horizon below the measured peak: the peak lies
+/// within 0.05 (cos theta_o) of the horizon and, on its azimuth, the lobe rises more than 100-fold between
+/// 1e-3 and 1e-6 of the peak's height (as 1 / cos theta_o: 1000-fold; a bounded lobe: about 1-fold).
+bool unboundedAtHorizon(const render::Scene& scene, const measure::Shape& shape);
 
 /// Whether any light reaches the plane (irradiance > 0 from above the horizon).
 bool lightReaches(const render::Scene& scene);
