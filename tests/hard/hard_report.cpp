@@ -1,0 +1,66 @@
+// hilite_hard_report: runs every hard case on both paths and prints the Markdown tables of
+// docs/hard_cases.md (what the tool answers in each case, and how far GL is from the double twin).
+//   build/bin/hilite_hard_report > /tmp/tables.md
+
+#include "hard/hard_cases.hpp"
+
+#include "gl/context.hpp"
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+using namespace hilite;
+using namespace hilite::hard;
+
+namespace {
+
+std::string num(double v, int digits = 3) {
+    std::ostringstream s;
+    s.precision(digits);
+    s << v;
+    return s.str();
+}
+
+/// "aspect A, major M deg [, flags]" or the diagnosis alone.
+std::string answer(const measure::Shape& s) {
+    using measure::Flag;
+    const bool shapeless = s.has(Flag::NoHighlight) || s.has(Flag::Mirror) ||
+                           (s.has(Flag::UnderResolved) && s.major_deg == 0);
+    std::string a = shapeless ? "" : "aspect " + num(s.aspect, 4) + ", major " + num(s.major_deg) + "°";
+    if (!s.flags.empty()) a += (a.empty() ? "" : "; ") + std::string("**") + flagList(s.flags) + "**";
+    return a;
+}
+
+std::string pixelColumn(const SceneOutcome& o) {
+    std::string p = o.pixels.nonFinite || o.pixels.negative ? "**non-finite or negative** " : "";
+    if (o.pixels.compared == 0) return p + "finite, ≥ 0 (all 0)";
+    return p + num(o.pixels.maxRelError, 2) + " (≤ " + num(o.tolerance, 2) + ")";
+}
+
+}  // namespace
+
+int main() {
+    gl::Context context(gl::backendFromEnvironment());
+    render::Renderer renderer(context);
+    std::cout << "| case | GL: answer | GL vs double, max rel. error per pixel (tolerance) | double: answer |\n"
+                 "|---|---|---|---|\n";
+    for (const SceneCase& c : sceneCases()) {
+        const SceneOutcome g = runSceneGl(renderer, c), d = runSceneDouble(c);
+        std::cout << "| " << c.name << " | " << answer(g.measurement.shape) << " | " << pixelColumn(g) << " | "
+                  << answer(d.measurement.shape) << " |\n"
+                  << std::flush;
+    }
+    std::cout << "\n| term case | double | GL | GL vs double (tolerance) |\n|---|---|---|---|\n";
+    for (const TermCase& c : termCases()) {
+        const TermOutcome g = runTermGl(c), d = runTermDouble(c);
+        std::string dv, gv;
+        for (int j = 0; j < c.components; ++j) {
+            dv += (j ? ", " : "") + num(d.value[j], 6);
+            gv += (j ? ", " : "") + num(g.value[j], 6);
+        }
+        std::cout << "| " << c.name << " | " << dv << " | " << gv << " | " << num(g.error, 2) << " (≤ "
+                  << num(c.tolerance, 2) << ") |\n";
+    }
+    return 0;
+}
