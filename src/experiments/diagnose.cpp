@@ -73,8 +73,10 @@ bool lightReaches(const render::Scene& scene) {
 void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape) {
     using measure::Flag;
     if (brdf::isDelta(scene.brdf)) {
-        // No pixel and no search can sample a delta: the highlight is the mirror image of the light.
-        if (lightReaches(scene)) replace(shape, Flag::NoHighlight, Flag::Mirror);
+        // No pixel and no search can sample a delta: the highlight is the mirror image of the light, of
+        // reflectance F at the mirror pair's cos (none for a matched index, F = 0).
+        const double F = brdf::luminance(brdf::fresnel(scene.brdf, scene.light.direction().z));
+        if (lightReaches(scene) && F > 0) replace(shape, Flag::NoHighlight, Flag::Mirror);
         return;
     }
     if (unboundedAtHorizon(scene, shape)) shape.flags.push_back(Flag::UnboundedAtHorizon);

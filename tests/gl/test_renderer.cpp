@@ -67,8 +67,9 @@ TEST_CASE("render::Renderer sizes and views") {
     for (auto [w, h] : {std::pair{1, 1}, {7, 3}, {128, 128}, {300, 200}}) {
         render::Scene s = makeScene(brdf::Model::GGX, 45);
         const auto r = test::compareWithTwin(*env.renderer, s, PinholeCamera::photo(45, 180, 10, 40, w, h));
-        CAPTURE(w);
-        CAPTURE(h);
+        const int width = w, height = h;  // clang 14 cannot capture structured bindings in CAPTURE's lambda
+        CAPTURE(width);
+        CAPTURE(height);
         CHECK(r.allFinite);
         CHECK(r.allNonNegative);
         CHECK(r.maxRelError < 1e-4);

@@ -146,6 +146,9 @@ std::vector<SceneCase> build() {
             .gl({F::UnderResolved})
             .ref(none),
         Row("a mirror in a fixed frame: GGX alpha 0", Model::GGX, 0.0, 45.0).fixed(30, 64).both({F::Mirror}),
+        Row("a mirror with no interface: GGX alpha 0, dielectric eta 1", Model::GGX, 0.0, 45.0)
+            .fresnel(Fresnel::Dielectric, 1.0)
+            .both({F::NoHighlight}),
         // Highlights cut by the horizon.
         Row("horizon cut: GGX alpha 0.3 at 85 deg", Model::GGX, 0.3, 85.0).both(cut),
         Row("horizon cut: Phong n 100 at 89.9 deg", Model::Phong, 100.0, 89.9).both(cut),
