@@ -87,7 +87,7 @@ std::string microSummary(const std::vector<nlohmann::json>& rows) {
     md << "### The realised slopes\n\n" << spec << ": " << cachedStats(spec)
        << " (Beckmann target: rms roughness/sqrt(2) = " << spec.roughness / std::sqrt(2.0)
        << " per axis, shares 0.125; KS is the largest gap between the realised and target radial CDFs over "
-       << 1024 * 1024 << " texels).\n\n";
+       << 4 * 1024 * 1024 << " points of the rendered, bilinear field).\n\n";
     // Masking and shadowing traced against a Beckmann height field of the same seed.
     md << "### Shadowing and masking from geometry\n\nRays traced against the height field (CPU, quarter-texel "
           "steps), 40000 random facets per angle, +- one standard error. G1 is the masking of all facets; since every "

@@ -193,7 +193,7 @@ void assignSections(CLI::App& app, size_t firstOption) {
         {"reference", "Measurement"}};
     static const std::map<std::string, std::string> surface = {
         {"bumps", "Surface"}, {"bump-period-px", "Surface"}, {"bump-seed", "Surface"}, {"bump-samples", "Surface"},
-        {"sun", "Surface"}};
+        {"sun", "Surface"}, {"bump-filter", "Surface"}, {"prefilter-check", "Surface"}};
     static const std::map<std::string, std::string> output = {
         {"output", "Output"}, {"float", "Output"}, {"exposure", "Output"}, {"json", "Output"}};
     const auto opts = app.get_options();
