@@ -5,9 +5,10 @@
 
 //@block BumpGlint needs common
 // One point of the bump field (tile lengths), bilinear on texel centres (i + 0.5) / n, wrapping: slope s,
-// J = ds/dx per tile length. texelFetch and explicit weights, so the CPU twin interpolates identically.
-struct BumpSample { vec2 s; mat2 J; };
-BumpSample bumpSample(sampler2D t0, sampler2D t1, float n, vec2 x) {
+// J = ds/dx per tile length, T = the third derivatives of the height (hxxx, hxxy, hxyy, hyyy). texelFetch and
+// explicit weights, so the CPU twin interpolates identically.
+struct BumpSample { vec2 s; mat2 J; vec4 T; };
+BumpSample bumpSample(sampler2D t0, sampler2D t1, sampler2D t2, float n, vec2 x) {
     vec2 u = fract(x) * n - 0.5;
     vec2 i0 = floor(u), f = u - i0;
     ivec2 a = ivec2(mod(i0, n)), b = ivec2(mod(i0 + 1.0, n));
@@ -15,11 +16,14 @@ BumpSample bumpSample(sampler2D t0, sampler2D t1, float n, vec2 x) {
     vec4 p01 = texelFetch(t0, ivec2(a.x, b.y), 0), p11 = texelFetch(t0, ivec2(b.x, b.y), 0);
     vec4 q00 = texelFetch(t1, ivec2(a.x, a.y), 0), q10 = texelFetch(t1, ivec2(b.x, a.y), 0);
     vec4 q01 = texelFetch(t1, ivec2(a.x, b.y), 0), q11 = texelFetch(t1, ivec2(b.x, b.y), 0);
+    vec4 r00 = texelFetch(t2, ivec2(a.x, a.y), 0), r10 = texelFetch(t2, ivec2(b.x, a.y), 0);
+    vec4 r01 = texelFetch(t2, ivec2(a.x, b.y), 0), r11 = texelFetch(t2, ivec2(b.x, b.y), 0);
     vec4 p = mix(mix(p00, p10, f.x), mix(p01, p11, f.x), f.y);
     vec4 q = mix(mix(q00, q10, f.x), mix(q01, q11, f.x), f.y);
     BumpSample r;
     r.s = p.xy;
     r.J = mat2(p.z, q.x, p.w, q.y);  // columns: d s / d x, d s / d y  (J[c][r] = d s_r / d x_c)
+    r.T = mix(mix(r00, r10, f.x), mix(r01, r11, f.x), f.y);
     return r;
 }
 
@@ -144,6 +148,7 @@ float momentsLobe(SlopeMoments M, vec3 we, vec3 wi, float sigma, out float VoH) 
 // Twin of render::bumpPixelRadiance (src/render/bumps.cpp).
 uniform sampler2D uBump0;
 uniform sampler2D uBump1;
+uniform sampler2D uBump2;
 uniform float uBumpTexels;
 uniform float uTileWorld;         // world length of the periodic tile
 uniform float uPeriodWorld;       // world length of one bump period
@@ -190,9 +195,13 @@ vec3 bumpRadiance(vec2 frag, vec3 wi, float E, vec3 back, vec3 right, vec3 up, v
             vec3 P, we;
             vec2 px = frag - 0.5 + (vec2(float(i), float(j)) + 0.5) / float(S);
             if (!planeHit(px, back, right, up, tanHalf, viewport, P, we)) continue;
-            BumpSample bs = bumpSample(uBump0, uBump1, uBumpTexels, P.xy / uTileWorld);
+            BumpSample bs = bumpSample(uBump0, uBump1, uBump2, uBumpTexels, P.xy / uTileWorld);
+            // The patch's mean slope, to second order: s + (1/2) d2s/dx2 : Sx. The slope at the centre alone
+            // would count the patch's own spread twice (its centres already vary as much as the field).
+            vec3 sx = vec3(Sx[0][0], 2.0 * Sx[0][1], Sx[1][1]);
+            vec2 sMean = bs.s + 0.5 * vec2(dot(bs.T.xyz, sx), dot(bs.T.yzw, sx));
             float VoM;
-            float g = bumpGlint(we, wi, bs.s, bs.J, Sx, uSunSigma, VoM);
+            float g = bumpGlint(we, wi, sMean, bs.J, Sx, uSunSigma, VoM);
             if (g > 0.0) sum += g * bumpFresnel(VoM);
         }
     return sum * (E / float(S * S));

@@ -24,7 +24,11 @@ const std::vector<std::string> kMeasureColumns = {
     "matched_parameter", "render_ms", "measure_ms",
     // issue 10, explicit micro-geometry (empty on flat surfaces): see cli/micro_fields.hpp
     "log2_bump_period_px", "bump_samples_center", "analytic_aspect", "analytic_major_deg", "analytic_minor_deg",
-    "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms", "slope_ks"};
+    "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms", "slope_ks", "bump_filter_used",
+    "prefilter_aspect", "prefilter_aspect_minus_analytic", "prefilter_major_over_analytic",
+    "prefilter_minor_over_analytic", "next_seed_aspect", "next_seed_aspect_minus_analytic",
+    "next_seed_major_over_analytic", "next_seed_minor_over_analytic", "prefilter_block_error",
+    "supersample_block_noise", "prefilter_error", "prefilter_blocks", "prefilter_unresolved_blocks"};
 const std::vector<std::string> kNotSceneParams = {"help", "scene", "output", "float", "exposure", "json",
                                                   "reference", "gl-backend", "incidence"};
 
@@ -155,6 +159,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     const nlohmann::json measured =
         measurementRow(r.scene, m, f, r.setup.width, r.setup.height, f.reference ? "reference" : "gl");
     for (auto& [k, v] : measured.items()) row[k] = v;
+    if (!f.reference) addPrefilterFields(row, renderer(), r.scene, r.setup, m);  // issue 10: --prefilter-check
     return row;
 }
 

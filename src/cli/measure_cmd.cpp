@@ -52,7 +52,7 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["minor_pixels"] = std::isfinite(r.minor_pixels) ? nlohmann::json(r.minor_pixels) : nlohmann::json(nullptr);
     j["render_ms"] = m.render_ms;
     j["measure_ms"] = m.measure_ms;
-    if (s.surface.bumps) addMicroFields(j, s, m, f.threshold);  // issue 10: bump period, analytic twin
+    if (s.surface.bumps) addMicroFields(j, s, m, f.threshold, width, height);  // issue 10: bump period, analytic twin
     return j;
 }
 
@@ -113,7 +113,8 @@ int runMeasure(const MeasureFlags& f) {
         scene.light.incidenceDeg = angle;
         const experiments::Measurement m = f.reference ? experiments::measureReference(scene, setup.options)
                                                        : experiments::measureAny(*renderer, scene, setup);
-        const nlohmann::json j = measurementRow(scene, m, f, setup.width, setup.height, f.reference ? "reference" : "gl");
+        nlohmann::json j = measurementRow(scene, m, f, setup.width, setup.height, f.reference ? "reference" : "gl");
+        if (renderer) addPrefilterFields(j, *renderer, scene, setup, m);  // issue 10: --prefilter-check
         if (f.json) std::cout << j.dump() << "\n" << std::flush;
         else printTableRow(j);
     }

@@ -1,6 +1,8 @@
 #include "cli/micro_fields.hpp"
 
 #include "experiments/measure_bumps.hpp"
+#include "experiments/prefilter_check.hpp"
+#include "render/bump_moments.hpp"
 #include "micro/masking.hpp"
 #include "render/bumps.hpp"
 
@@ -24,7 +26,11 @@ double num(const nlohmann::json& r, const char* k) { return r.contains(k) && r[k
 
 }  // namespace
 
-void addMicroFields(nlohmann::json& row, const render::Scene& s, const experiments::Measurement& m, double threshold) {
+void addMicroFields(nlohmann::json& row, const render::Scene& s, const experiments::Measurement& m, double threshold,
+                    int width, int height) {
+    const PinholeCamera cam = experiments::measurementCamera(s, m.center, m.fovDeg, width, height);
+    row["bump_filter"] = render::toString(s.surface.filter);
+    row["bump_filter_used"] = render::usesMoments(s, cam) ? "moments" : "supersample";
     const double period = s.surface.bumpPeriodPx;
     row["log2_bump_period_px"] = std::log2(period);
     // The centre pixel's footprint spans 1/period periods across and 1/(period cos) along the view.
@@ -43,6 +49,29 @@ void addMicroFields(nlohmann::json& row, const render::Scene& s, const experimen
     row["slope_ks"] = st.ks;
     for (const char* k : {"major_over_analytic", "minor_over_analytic"})
         if (!std::isfinite(row[k].get<double>())) row[k] = nullptr;
+}
+
+void addPrefilterFields(nlohmann::json& row, render::Renderer& renderer, const render::Scene& s,
+                        const experiments::MeasureSetup& setup, const experiments::Measurement& m) {
+    if (!s.surface.bumps || !s.surface.prefilterCheck) return;
+    const PinholeCamera cam = experiments::measurementCamera(s, m.center, m.fovDeg, setup.width, setup.height);
+    if (render::centreBumpSamples(s, cam) > render::kMaxBumpSamples) return;  // supersampling does not run here
+    const experiments::PrefilterCheck c = experiments::checkPrefilter(renderer, s, setup, m);
+    const double a = num(row, "analytic_aspect"), amaj = num(row, "analytic_major_deg"),
+                 amin = num(row, "analytic_minor_deg");
+    auto put = [&](const std::string& key, double v) { row[key] = std::isfinite(v) ? nlohmann::json(v) : nullptr; };
+    for (const auto& [prefix, shape] : {std::pair<std::string, const measure::Shape*>{"prefilter", &c.moments},
+                                        {"next_seed", &c.nextSeed}}) {
+        put(prefix + "_aspect", shape->aspect);
+        put(prefix + "_aspect_minus_analytic", shape->aspect - a);
+        put(prefix + "_major_over_analytic", shape->major_deg / amaj);
+        put(prefix + "_minor_over_analytic", shape->minor_deg / amin);
+    }
+    put("prefilter_block_error", c.blockError);
+    put("supersample_block_noise", c.blockNoise);
+    put("prefilter_error", c.prefilterError);
+    row["prefilter_blocks"] = c.blocks;
+    row["prefilter_unresolved_blocks"] = c.unresolvedBlocks;
 }
 
 std::string microSummary(const std::vector<nlohmann::json>& rows) {

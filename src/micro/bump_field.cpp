@@ -113,6 +113,12 @@ BumpField makeBumpField(const BumpSpec& spec) {
     const auto hxx = field([&](double fx, double) { return I * I * fx * fx; });
     const auto hxy = field([&](double fx, double fy) { return I * I * fx * fy; });
     const auto hyy = field([&](double, double fy) { return I * I * fy * fy; });
+    const bool curvature = spec.kind != BumpKind::GGX;  // the remapped normal map has no height to differentiate
+    const std::vector<double> none;
+    const auto hxxx = curvature ? field([&](double fx, double) { return I * I * I * fx * fx * fx; }) : none;
+    const auto hxxy = curvature ? field([&](double fx, double fy) { return I * I * I * fx * fx * fy; }) : none;
+    const auto hxyy = curvature ? field([&](double fx, double fy) { return I * I * I * fx * fy * fy; }) : none;
+    const auto hyyy = curvature ? field([&](double, double fy) { return I * I * I * fy * fy * fy; }) : none;
     // The mean |s|^2 of the field as rendered (bilinear between texel centres: ~3% below the texel centres'
     // own mean square for 16 texels a bump period).
     auto at = [n](const std::vector<double>& v) {
@@ -123,6 +129,7 @@ BumpField makeBumpField(const BumpSpec& spec) {
     const double scale = (spec.kind == BumpKind::GGX ? 1.0 : spec.roughness) / std::sqrt(msq);
     f.tex0.resize(4 * nn);
     f.tex1.resize(4 * nn);
+    f.tex2.assign(4 * nn, 0.f);
     f.heightMin = 1e300, f.heightMax = -1e300;
     for (size_t k = 0; k < nn; ++k) {
         dvec2 s(scale * hx[k], scale * hy[k]);
@@ -145,6 +152,9 @@ BumpField makeBumpField(const BumpSpec& spec) {
         const float t1[4] = {float(J[2]), float(J[3]), float(hk), 0.f};
         std::copy(t0, t0 + 4, f.tex0.begin() + long(4 * k));
         std::copy(t1, t1 + 4, f.tex1.begin() + long(4 * k));
+        if (curvature)
+            for (int q = 0; q < 4; ++q)
+                f.tex2[4 * k + size_t(q)] = float(scale * (q == 0 ? hxxx : q == 1 ? hxxy : q == 2 ? hxyy : hyyy)[k]);
     }
     return f;
 }
@@ -188,6 +198,7 @@ BumpSample BumpField::sample(double x, double y) const {
     s.Jxx = lerp2(tex0, b, 2), s.Jxy = lerp2(tex0, b, 3);
     s.Jyx = lerp2(tex1, b, 0), s.Jyy = lerp2(tex1, b, 1);
     s.h = lerp2(tex1, b, 2);
+    s.hxxx = lerp2(tex2, b, 0), s.hxxy = lerp2(tex2, b, 1), s.hxyy = lerp2(tex2, b, 2), s.hyyy = lerp2(tex2, b, 3);
     return s;
 }
 

@@ -11,9 +11,10 @@
 // is no longer the gradient of a height field, so masking is traced on Beckmann fields only.
 //
 // Storage (the texture the shader reads, and the CPU twin): per texel, at its centre ((i + 0.5) / n),
-//   tex0 = (s_x, s_y, J_xx, J_xy), tex1 = (J_yx, J_yy, h, 0),
+//   tex0 = (s_x, s_y, J_xx, J_xy), tex1 = (J_yx, J_yy, h, 0), tex2 = (h_xxx, h_xxy, h_xyy, h_yyy),
 // s the slope (m = normalize(-s_x, -s_y, 1)), J = ds/dx per tile length (the Hessian of h for Beckmann),
-// h the height in tile lengths. Values between texel centres are bilinear, wrapping at the tile's edges.
+// h the height in tile lengths, tex2 the third derivatives of h (the slope's curvature; 0 for GGX normal maps),
+// which give a patch's mean slope to second order. Values between texel centres are bilinear, wrapping.
 
 #include "core/math.hpp"
 
@@ -49,12 +50,13 @@ struct BumpSample {
     dvec2 s{0.0};
     double Jxx = 0, Jxy = 0, Jyx = 0, Jyy = 0;
     double h = 0;
+    double hxxx = 0, hxxy = 0, hxyy = 0, hyyy = 0;  ///< third derivatives of h: the slope's second derivatives
 };
 
 struct BumpField {
     BumpSpec spec;
     int n = 0;
-    std::vector<float> tex0, tex1;  ///< 4 floats per texel each, row-major, row y = j
+    std::vector<float> tex0, tex1, tex2;  ///< 4 floats per texel each, row-major, row y = j
     double heightMin = 0, heightMax = 0;
 
     /// Bilinear at (x, y) in tile lengths (any real: the tile repeats). The twin of bumpSample() in GLSL.

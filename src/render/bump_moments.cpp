@@ -52,8 +52,11 @@ double bumpMomentsLobe(const micro::Moments& M, const dvec3& we, const dvec3& wi
 }
 
 int centreBumpSamples(const Scene& scene, const PinholeCamera& cam) {
+    return bumpSamplesAt(scene, cam, 0.5 * cam.width, 0.5 * cam.height);
+}
+
+int bumpSamplesAt(const Scene& scene, const PinholeCamera& cam, double fx, double fy) {
     if (scene.surface.samples > 0) return scene.surface.samples;
-    const double fx = 0.5 * cam.width, fy = 0.5 * cam.height;
     auto hit = [&](double px, double py, dvec3& P) {
         const dvec3 d = cam.ray(px, py);
         if (d.z >= 0.0) return false;  // the ray never meets the plane

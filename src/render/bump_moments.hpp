@@ -23,6 +23,8 @@ double bumpMomentsLobe(const micro::Moments& M, const dvec3& we, const dvec3& wi
 /// Patches per axis that supersampling needs at the centre pixel of `camera` (uncapped; the fixed
 /// bump_samples when given).
 int centreBumpSamples(const Scene& scene, const PinholeCamera& camera);
+/// The same at the pixel whose corner is at (px, py) (pixel units; the centre pixel's is (w/2, h/2)).
+int bumpSamplesAt(const Scene& scene, const PinholeCamera& camera, double px, double py);
 /// Whether this render uses the moments prefilter: BumpFilter::Moments, or Auto where the centre pixel
 /// needs more than kMaxBumpSamples patches per axis (supersampling no longer resolves the bumps there).
 bool usesMoments(const Scene& scene, const PinholeCamera& camera);

@@ -54,16 +54,13 @@ int bumpSamples(const Surface& s, double periods) {
 
 BumpTextures::~BumpTextures() {
     for (auto* textures : {&m_textures, &m_moments})
-        for (auto& [spec, t] : *textures) {
-            glDeleteTextures(1, &t.first);
-            glDeleteTextures(1, &t.second);
-        }
+        for (auto& [spec, ids] : *textures) glDeleteTextures(GLsizei(ids.size()), ids.data());
 }
 
 namespace {
 
 /// The moments pyramid as two mipmapped textures (every level down to 1 x 1, so texelFetch may read any).
-std::pair<unsigned, unsigned> momentTextures(const micro::SlopeMoments& m) {
+std::vector<unsigned> momentTextures(const micro::SlopeMoments& m) {
     unsigned ids[2];
     glGenTextures(2, ids);
     for (int k = 0; k < 2; ++k) {
@@ -84,41 +81,46 @@ std::pair<unsigned, unsigned> momentTextures(const micro::SlopeMoments& m) {
     return {ids[0], ids[1]};
 }
 
+/// The field: three RGBA32F textures (tex0, tex1, tex2), nearest (the shader interpolates).
+std::vector<unsigned> fieldTextures(const micro::BumpField& f) {
+    std::vector<unsigned> ids(3);
+    glGenTextures(3, ids.data());
+    for (size_t k = 0; k < 3; ++k) {
+        glBindTexture(GL_TEXTURE_2D, ids[k]);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, f.n, f.n, 0, GL_RGBA, GL_FLOAT,
+                     (k == 0 ? f.tex0 : k == 1 ? f.tex1 : f.tex2).data());
+    }
+    return ids;
+}
+
 }  // namespace
 
 void BumpTextures::bind(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam) {
     const micro::BumpSpec spec = bumpSpec(scene);
     const bool moments = usesMoments(scene, cam);
     if (moments && !m_moments.count(spec)) m_moments.emplace(spec, momentTextures(micro::cachedSlopeMoments(spec)));
-    auto it = m_textures.find(spec);
-    if (it == m_textures.end()) {
-        const micro::BumpField& f = micro::cachedBumpField(spec);
-        unsigned ids[2];
-        glGenTextures(2, ids);
-        for (int k = 0; k < 2; ++k) {
-            glBindTexture(GL_TEXTURE_2D, ids[k]);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, f.n, f.n, 0, GL_RGBA, GL_FLOAT,
-                         (k == 0 ? f.tex0 : f.tex1).data());
-        }
-        it = m_textures.emplace(spec, std::make_pair(ids[0], ids[1])).first;
+    if (!m_textures.count(spec)) m_textures.emplace(spec, fieldTextures(micro::cachedBumpField(spec)));
+    // Units 1, 2, 5: the field; 3, 4: its moment pyramid (when this render uses the moments prefilter).
+    const std::vector<unsigned>& field = m_textures.at(spec);
+    const unsigned units[3] = {1, 2, 5};
+    for (size_t k = 0; k < 3; ++k) {
+        glActiveTexture(GL_TEXTURE0 + units[k]);
+        glBindTexture(GL_TEXTURE_2D, field[k]);
     }
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, it->second.first);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, it->second.second);
     if (moments) {
-        const auto& mt = m_moments.at(spec);
-        glActiveTexture(GL_TEXTURE3);
-        glBindTexture(GL_TEXTURE_2D, mt.first);
-        glActiveTexture(GL_TEXTURE4);
-        glBindTexture(GL_TEXTURE_2D, mt.second);
+        const std::vector<unsigned>& mt = m_moments.at(spec);
+        for (size_t k = 0; k < 2; ++k) {
+            glActiveTexture(GL_TEXTURE3 + unsigned(k));
+            glBindTexture(GL_TEXTURE_2D, mt[k]);
+        }
     }
     glActiveTexture(GL_TEXTURE0);
     glUseProgram(prog.id());
     glUniform1i(prog.uniform("uBump0"), 1);
     glUniform1i(prog.uniform("uBump1"), 2);
+    glUniform1i(prog.uniform("uBump2"), 5);
     glUniform1i(prog.uniform("uMoments0"), 3);
     glUniform1i(prog.uniform("uMoments1"), 4);
     glUniform1i(prog.uniform("uBumpFilter"), moments ? 1 : 0);
@@ -209,8 +211,11 @@ dvec3 bumpPixelRadiance(const Scene& scene, const PinholeCamera& cam, int ix, in
             if (!planeHit(cam, fx - 0.5 + (i + 0.5) / S, fy - 0.5 + (j + 0.5) / S, P, we)) continue;
             const micro::BumpSample bs = f.sample(P.x / tile, P.y / tile);
             const double J[4] = {bs.Jxx, bs.Jxy, bs.Jyx, bs.Jyy};
+            // The patch's mean slope to second order (see bumpRadiance() in shaders/micro.glsl).
+            const dvec2 sMean = bs.s + 0.5 * dvec2(bs.hxxx * Sx[0] + 2.0 * bs.hxxy * Sx[1] + bs.hxyy * Sx[2],
+                                                   bs.hxxy * Sx[0] + 2.0 * bs.hxyy * Sx[1] + bs.hyyy * Sx[2]);
             double VoM = 0;
-            const double g = bumpGlint(we, wi, bs.s, J, Sx, sigma, VoM);
+            const double g = bumpGlint(we, wi, sMean, J, Sx, sigma, VoM);
             if (g > 0.0) sum += g * brdf::fresnel(scene.brdf, VoM);
         }
     return sum * (scene.light.irradiance / (S * S));
