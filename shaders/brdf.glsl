@@ -43,6 +43,14 @@ float Phong_Classic(float oneMinusCosR, float n) {
 }
 //@end
 
+//@block Retro_Normalized needs common
+// Retroreflective lobe: f = (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi), back toward the light (street signs,
+// cat's eyes). Lafortune et al. 1997 (the cosine lobe with Cx = Cy = Cz = 1); normalized as Phong's.
+float Retro_Normalized(float oneMinusCosB, float n) {
+    return (n + 2.0) * (0.5 * INV_PI) * powCosStable(oneMinusCosB, n);
+}
+//@end
+
 //@block D_BlinnPhong needs common
 // Blinn-Phong NDF: D(h) = (n+2)/(2 pi) cos^n(theta_h). Blinn 1977; int D (n.h) dw = 1.
 float D_BlinnPhong(float oneMinusNoH, float n) {

@@ -43,6 +43,7 @@ double distribution(const Params& p, const HalfVector& hv) {
         case Model::Gaussian: return D_Gaussian(hv.NoH, hv.sin2h, p.roughness, gaussianNormalization(p.roughness));
         case Model::Phong:
         case Model::PhongClassic:
+        case Model::Retro:
         case Model::None: break;
     }
     return 0.0;
@@ -66,6 +67,7 @@ double lambda(const Params& p, const dvec3& w) {
         case Model::Blinn: return Lambda_Beckmann(w.z, blinnExponentToBeckmann(p.exponent));
         case Model::Phong:
         case Model::PhongClassic:
+        case Model::Retro:
         case Model::None: break;
     }
     return 0.0;
@@ -125,6 +127,10 @@ dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo) {
         const double oneMinusCosR = 0.5 * glm::dot(d, d);
         return dvec3(p.model == Model::Phong ? Phong_Normalized(oneMinusCosR, p.exponent)
                                              : Phong_Classic(oneMinusCosR, p.exponent));
+    }
+    if (p.model == Model::Retro) {
+        const dvec3 d = wo - wi;  // 1 - cos(beta) = |d|^2 / 2
+        return dvec3(Retro_Normalized(0.5 * glm::dot(d, d), p.exponent));
     }
     const HalfVector hv = halfVector(wi, wo);
     if (!hv.valid) return dvec3(0.0);

@@ -74,9 +74,10 @@ dvec3 microfacetAlbedo(const Params& p, const dvec3& wi) {
     });
 }
 
-/// Reflection lobes, integrated about the mirror direction wr: wo = cos(b) wr + sin(b)(cos(g) e1 + sin(g) e2).
+/// Reflection lobes, integrated about their axis wr (the mirror direction; wi itself for the retroreflective
+/// lobe): wo = cos(b) wr + sin(b)(cos(g) e1 + sin(g) e2).
 dvec3 reflectionLobeAlbedo(const Params& p, const dvec3& wi) {
-    const dvec3 wr(-wi.x, -wi.y, wi.z);
+    const dvec3 wr = p.model == Model::Retro ? wi : dvec3(-wi.x, -wi.y, wi.z);
     const dvec3 e1 =
         glm::normalize(std::abs(wr.z) < 0.9 ? glm::cross(wr, dvec3(0, 0, 1)) : glm::cross(wr, dvec3(1, 0, 0)));
     const dvec3 e2 = glm::cross(wr, e1);
@@ -140,7 +141,7 @@ dvec3 albedo(const Params& p, double thetaDeg, double phiDeg) {
     dvec3 rho = p.diffuse == Diffuse::None ? dvec3(0.0) : diffuseAlbedo(p, wi);
     if (isMicrofacet(p.model))
         rho += microfacetAlbedo(p, wi);
-    else if (p.model == Model::Phong || p.model == Model::PhongClassic)
+    else if (p.model == Model::Phong || p.model == Model::PhongClassic || p.model == Model::Retro)
         rho += reflectionLobeAlbedo(p, wi);
     return rho;
 }

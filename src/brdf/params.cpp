@@ -23,7 +23,7 @@ std::vector<std::string> names(const E (&all)[N]) {
 }
 
 constexpr Model kModels[] = {Model::Phong,    Model::PhongClassic, Model::Blinn, Model::Gaussian,
-                             Model::Beckmann, Model::GGX,          Model::None};
+                             Model::Beckmann, Model::GGX,          Model::None,  Model::Retro};
 constexpr Fresnel kFresnels[] = {Fresnel::None, Fresnel::Schlick, Fresnel::Dielectric, Fresnel::Conductor,
                                  Fresnel::Spectral};
 constexpr Geometry kGeometries[] = {Geometry::None, Geometry::Implicit, Geometry::CookTorrance,
@@ -46,6 +46,7 @@ const char* toString(Model m) {
         case Model::PhongClassic: return "phong-classic";
         case Model::Gaussian: return "gaussian";
         case Model::None: return "none";
+        case Model::Retro: return "retro";
     }
     return "?";
 }
@@ -90,7 +91,9 @@ std::vector<std::string> diffuseNames() { return names(kDiffuses); }
 bool isMicrofacet(Model m) {
     return m == Model::Blinn || m == Model::Beckmann || m == Model::GGX || m == Model::Gaussian;
 }
-bool usesExponent(Model m) { return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn; }
+bool usesExponent(Model m) {
+    return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn || m == Model::Retro;
+}
 bool allowsAnisotropy(Model m) { return m == Model::Beckmann || m == Model::GGX; }
 
 std::ostream& operator<<(std::ostream& os, Model m) { return os << toString(m); }

@@ -24,6 +24,7 @@ enum class Model {
     PhongClassic,  ///< classic unnormalized Phong lobe cos^n(alpha_r) (k_s = 1): not energy-conserving
     Gaussian,      ///< microfacet, Gaussian NDF k_G exp(-(theta_h / m)^2) in the angle theta_h
     None,          ///< no specular lobe: the diffuse term alone
+    Retro,         ///< retroreflective lobe (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi): back toward the light
 };
 enum class Fresnel {
     None,        ///< F = 1
@@ -59,7 +60,7 @@ std::vector<std::string> geometryNames();
 std::vector<std::string> diffuseNames();
 
 bool isMicrofacet(Model m);
-bool usesExponent(Model m);      ///< phong, phong-classic, blinn take an exponent; beckmann, ggx, gaussian a roughness
+bool usesExponent(Model m);      ///< phong, phong-classic, blinn, retro take an exponent; beckmann, ggx, gaussian a roughness
 bool allowsAnisotropy(Model m);  ///< beckmann, ggx
 
 struct Params {

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "experiments/measure_bumps.hpp"
 #include "experiments/measure_scene.hpp"
+#include "experiments/peak_frame.hpp"
 #include "cli/micro_fields.hpp"
 
 #include <nlohmann/json.hpp>
@@ -36,6 +37,9 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["azimuth_deg"] = s.light.azimuthDeg;
     j["threshold"] = f.threshold;
     j["method"] = method;
+    double offsetDeg = 0;  // issue 10: a highlight far from the mirror direction is measured about its peak
+    j["framed_about"] = experiments::framedAbout(s, f.threshold, offsetDeg);
+    j["peak_offset_deg"] = offsetDeg;
     for (auto [key, v] : {std::pair{"aspect", r.aspect}, {"eccentricity", r.eccentricity}, {"major_deg", r.major_deg},
                           {"minor_deg", r.minor_deg}, {"orientation_deg", r.orientation_deg},
                           {"centroid_u_deg", r.centroid_u_deg}, {"centroid_v_deg", r.centroid_v_deg},
@@ -65,6 +69,11 @@ void printTableRow(const nlohmann::json& j) {
     std::string flags;
     for (const auto& fl : j["flags"]) flags += (flags.empty() ? "" : ",") + fl.get<std::string>();
     auto num = [&](const char* k) { return j[k].is_null() ? NAN : j[k].get<double>(); };
+    if (j.value("framed_about", std::string("mirror direction")) != "mirror direction") {
+        char about[96];
+        std::snprintf(about, sizeof about, "about the peak, %.4g deg from the mirror direction", num("peak_offset_deg"));
+        flags += (flags.empty() ? "" : " ") + std::string("(") + about + ")";
+    }
     std::printf("%-9s %6.2f %8.5f %8.5f %9.4f %9.4f %7.2f %8.4f %8.4f %8.4f %8.4f  %s\n",
                 j["model"].get<std::string>().c_str(), num("incidence_deg"), num("aspect"), num("eccentricity"),
                 num("major_deg"), num("minor_deg"), num("orientation_deg"), num("centroid_u_deg"),

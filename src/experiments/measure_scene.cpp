@@ -1,6 +1,7 @@
 #include "experiments/measure_scene.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "experiments/peak_frame.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -107,6 +108,8 @@ double twinHalfWidth(const render::Scene& scene, double threshold) {
 }
 
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup) {
+    // A peak far from the mirror direction (retroreflection): framed and measured about the peak.
+    if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureGl(renderer, *framed, setup);
     Measurement m;
     Frame frame{liftAboveHorizon(scene.light.chart().wr()), setup.fovDeg};
     // Per-thread buffers: reused across calls, so the readback never reallocates (4 MB at 512x512).
@@ -148,6 +151,7 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
 }
 
 Measurement measureReference(const render::Scene& scene, const measure::Options& options) {
+    if (const auto framed = frameAboutPeak(scene, options.threshold)) return measureReference(*framed, options);
     Measurement m;
     const auto t0 = Clock::now();
     const double r = twinHalfWidth(scene, options.threshold);

@@ -254,6 +254,7 @@ std::vector<std::string> termBlocks(const brdf::Params& p) {
     std::vector<std::string> out;
     if (p.model == Model::Phong) out.push_back("Phong_Normalized");
     if (p.model == Model::PhongClassic) out.push_back("Phong_Classic");
+    if (p.model == Model::Retro) out.push_back("Retro_Normalized");
     if (brdf::isMicrofacet(p.model)) {
         out.push_back("HalfVector");
         out.push_back(distributionBlock(p));
@@ -277,6 +278,11 @@ std::string dispatchSource(const brdf::Params& p) {
              "    vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2\n"
              "    return vec3("
           << (p.model == Model::Phong ? "Phong_Normalized" : "Phong_Classic") << "(0.5 * dot(d, d), uExponent));\n}\n";
+    } else if (p.model == Model::Retro) {
+        s << "uniform float uExponent;\n"
+             "vec3 specular(vec3 wi, vec3 wo) {\n"
+             "    vec3 d = wo - wi;  // 1 - cos(beta) = |d|^2 / 2\n"
+             "    return vec3(Retro_Normalized(0.5 * dot(d, d), uExponent));\n}\n";
     } else if (specular) {
         microfacetDispatch(s, p);
     }

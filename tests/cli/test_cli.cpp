@@ -121,3 +121,15 @@ TEST_CASE("cli help documents every subcommand") {
     const auto m = hilite("measure --help");
     CHECK(m.out.find("--threshold") != std::string::npos);
 }
+
+TEST_CASE("cli::measure says what a highlight is framed about (issue 10: retroreflection)") {
+    const auto r = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64 --json", true);
+    CHECK(r.code == 0);
+    CHECK(r.out.find("\"framed_about\":\"peak (retroreflection: toward the light, 2 theta_i = 120 deg") !=
+          std::string::npos);
+    CHECK((r.out.find("\"peak_offset_deg\":120") != std::string::npos || r.out.find("\"peak_offset_deg\":119.9999") != std::string::npos));
+    const auto t = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64", true);
+    CHECK(t.out.find("about the peak, 120 deg from the mirror direction") != std::string::npos);
+    const auto g = hilite("measure --model ggx --incidence 60 --size 64 --json", true);
+    CHECK(g.out.find("\"framed_about\":\"mirror direction\"") != std::string::npos);
+}

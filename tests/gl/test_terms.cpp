@@ -86,12 +86,13 @@ std::vector<TermCase> termCases() {
         {"Fd_Lambert + D_GGX", withDiffuse(base(Model::GGX, Geometry::Smith), Diffuse::Lambert)},
         {"Fd_OrenNayar", withDiffuse(base(Model::None), Diffuse::OrenNayar)},
         {"Fd_OrenNayar + Phong_Normalized", withDiffuse(base(Model::Phong), Diffuse::OrenNayar)},
+        {"Retro_Normalized", base(Model::Retro)},  // issue 10 (its framing: tests/gl/test_retro.cpp)
     };
 }
 
 PinholeCamera measureCamera(const render::Scene& s, double fov, int w, int h) {
     const MirrorChart chart = s.light.chart();
-    dvec3 c = chart.wr();
+    dvec3 c = s.brdf.model == Model::Retro ? s.light.direction() : chart.wr();  // the lobe's axis
     if (c.z < 1e-3) c = glm::normalize(dvec3(c.x, c.y, 1e-3));
     return PinholeCamera::measurement(chart, c, fov, w, h);
 }
@@ -131,7 +132,7 @@ TEST_CASE("render::assemble a program holds exactly the terms it runs") {
         "D_Gaussian(",           "D_BeckmannAniso(",    "D_GGXAniso(",        "F_Schlick(",       "F_Dielectric(",
         "F_Conductor(",          "F_Spectral(",         "Lambda_GGX(",        "Lambda_Beckmann(", "Lambda_GGXAniso(",
         "Lambda_BeckmannAniso(", "G2_SmithCorrelated(", "G2_SmithSeparable(", "G_CookTorrance(",  "Fd_Lambert(",
-        "Fd_OrenNayar("};
+        "Fd_OrenNayar(",         "Retro_Normalized("};
     for (const TermCase& t : termCases()) {
         const std::string text = fragment(t.p);
         const auto blocks = render::termBlocks(t.p);

@@ -1,0 +1,79 @@
+#include "experiments/peak_frame.hpp"
+
+#include "brdf/evaluate.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace hilite::experiments {
+
+namespace {
+
+double angleDeg(const dvec3& a, const dvec3& b) { return rad2deg(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b))); }
+
+}  // namespace
+
+LobePeak findPeak(const render::Scene& scene) {
+    render::Scene mirror = scene;
+    mirror.light.chartCenter.reset();
+    const dvec3 eye = render::eyePosition(mirror), wr = mirror.light.chart().wr(), wi = scene.light.direction();
+    auto lobe = [&](const dvec3& we) {
+        return we.z > 0.0 ? brdf::luminance(render::surfaceRadiance(scene, eye, we)) : 0.0;
+    };
+    LobePeak p;
+    auto consider = [&](const dvec3& we) {
+        const double v = lobe(we);
+        if (v > p.value) p.value = v, p.direction = we;
+    };
+    for (const dvec3& c : {wr, wi, dvec3(0, 0, 1)}) consider(glm::normalize(dvec3(c.x, c.y, std::max(c.z, 1e-6))));
+    for (int i = 0; i < 60; ++i)
+        for (int j = 0; j < 120; ++j) consider(sphericalDirectionDeg(0.75 + 1.5 * i, 3.0 * j));
+    // Pattern search in a chart about the best point: take the best of four neighbours, else halve the step.
+    if (p.value > 0) {
+        render::Scene about = mirror;
+        about.light.chartCenter = p.direction;
+        const MirrorChart chart = about.light.chart();
+        double u = 0, v = 0;
+        for (double step = deg2rad(1.0); step > 1e-9;) {
+            bool moved = false;
+            for (auto [du, dv] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}}) {
+                const double x = lobe(chart.direction(u + du * step, v + dv * step));
+                if (x > p.value) p.value = x, u += du * step, v += dv * step, moved = true;
+            }
+            if (!moved) step *= 0.5;
+        }
+        p.direction = chart.direction(u, v);
+    }
+    p.mirrorValue = lobe(glm::normalize(dvec3(wr.x, wr.y, std::max(wr.z, 1e-6))));
+    p.offsetDeg = angleDeg(p.direction, wr);
+    p.fromLightDeg = angleDeg(p.direction, wi);
+    return p;
+}
+
+std::optional<render::Scene> frameAboutPeak(const render::Scene& scene, double threshold) {
+    // Bumps are framed by their analytic twin; under a point light the eye sits on the chart's centre, so the
+    // lobe it sees would move with the frame: both stay about the mirror direction.
+    if (scene.light.chartCenter || scene.surface.bumps || scene.light.type != render::LightType::Directional)
+        return std::nullopt;
+    const LobePeak p = findPeak(scene);
+    if (!(p.value > 0) || p.mirrorValue >= threshold * p.value) return std::nullopt;  // wr inside the region
+    render::Scene s = scene;
+    s.light.chartCenter = p.direction;
+    return s;
+}
+
+std::string framedAbout(const render::Scene& scene, double threshold, double& offsetDeg) {
+    offsetDeg = 0;
+    if (!frameAboutPeak(scene, threshold)) return "mirror direction";
+    const LobePeak p = findPeak(scene);
+    offsetDeg = p.offsetDeg;
+    std::ostringstream s;
+    s.precision(4);
+    if (p.fromLightDeg < 0.5)
+        s << "peak (retroreflection: toward the light, 2 theta_i = " << p.offsetDeg << " deg from the mirror direction)";
+    else
+        s << "peak (" << p.offsetDeg << " deg from the mirror direction)";
+    return s.str();
+}
+
+}  // namespace hilite::experiments
