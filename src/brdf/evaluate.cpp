@@ -1,5 +1,6 @@
 #include "brdf/evaluate.hpp"
 
+#include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "brdf/terms.hpp"
 
@@ -15,6 +16,11 @@ struct HalfVector {
     dvec3 h{0.0};
     bool valid = false;  ///< false when wi = -wo: no half vector exists
 };
+
+const NdfTable& table(const Params& p) {
+    if (!p.ndfTable) throw std::logic_error("model tabulated without a table (Params::ndfTable)");
+    return *p.ndfTable;
+}
 
 HalfVector halfVector(const dvec3& wi, const dvec3& wo) {
     HalfVector hv;
@@ -41,6 +47,7 @@ double distribution(const Params& p, const HalfVector& hv) {
         case Model::Beckmann: return D_Beckmann(hv.NoH, hv.sin2h, p.roughness);
         case Model::GGX: return D_GGX(hv.NoH, hv.sin2h, p.roughness);
         case Model::Gaussian: return D_Gaussian(hv.NoH, hv.sin2h, p.roughness, gaussianNormalization(p.roughness));
+        case Model::Tabulated: return D_Tabulated(hv.NoH, hv.sin2h, table(p));
         case Model::Phong:
         case Model::PhongClassic:
         case Model::Retro:
@@ -65,6 +72,7 @@ double lambda(const Params& p, const dvec3& w) {
         case Model::Beckmann:
         case Model::Gaussian: return Lambda_Beckmann(w.z, p.roughness);
         case Model::Blinn: return Lambda_Beckmann(w.z, blinnExponentToBeckmann(p.exponent));
+        case Model::Tabulated: return Lambda_Tabulated(w.z, table(p));
         case Model::Phong:
         case Model::PhongClassic:
         case Model::Retro:

@@ -1,6 +1,7 @@
 #include "brdf/integrate.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "brdf/ndf_table.hpp"
 
 #include <cmath>
 
@@ -123,6 +124,8 @@ double lobeWidth(const Params& p) {
     double w = 0.5 * kPi;
     if (usesExponent(p.model))
         w = std::sqrt(2.0 / (p.exponent + 2.0));
+    else if (p.model == Model::Tabulated && p.ndfTable)
+        w = p.ndfTable->halfWidth;
     else if (p.model != Model::None)
         w = std::atan(std::min(p.alphaX(), p.alphaY()));
     // 1e-6: n = 1e8 would give 1.4e-4 anyway; the floor only keeps the first panel of a degenerate

@@ -21,6 +21,7 @@ const std::vector<std::string> kMeasureColumns = {
     "model", "incidence_deg", "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg",
     "centroid_u_deg", "centroid_v_deg", "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg",
     "area_deg2", "cos_incidence", "flags", "renders", "size", "fov_deg", "minor_pixels", "method", "framed_about",
+    "ndf_table_normalization",
     "peak_offset_deg",
     "matched_parameter", "render_ms", "measure_ms",
     // issue 10, explicit micro-geometry (empty on flat surfaces): see cli/micro_fields.hpp

@@ -9,6 +9,7 @@
 #include "experiments/measure_bumps.hpp"
 #include "experiments/measure_scene.hpp"
 #include "experiments/peak_frame.hpp"
+#include "brdf/ndf_table.hpp"
 #include "cli/micro_fields.hpp"
 
 #include <nlohmann/json.hpp>
@@ -26,6 +27,10 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["model"] = brdf::toString(s.brdf.model);
     if (brdf::usesExponent(s.brdf.model)) j["exponent"] = s.brdf.exponent;
     else j["roughness"] = s.brdf.roughness;
+    if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable) {  // issue 10: the table and its normalization
+        j["ndf_table"] = s.brdf.ndfTable->file;
+        j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
+    }
     j["fresnel"] = brdf::toString(s.brdf.fresnel);
     j["geometry"] = brdf::toString(s.brdf.geometry);
     j["incidence_deg"] = s.light.incidenceDeg;

@@ -57,6 +57,10 @@ std::optional<render::Scene> frameAboutPeak(const render::Scene& scene, double t
         return std::nullopt;
     const LobePeak p = findPeak(scene);
     if (!(p.value > 0) || p.mirrorValue >= threshold * p.value) return std::nullopt;  // wr inside the region
+    if (p.offsetDeg <= kFarPeakDeg) return std::nullopt;  // near: the chart about wr measures it undistorted
+    // Forward peaks far from wr (a rough lobe with Smith G and Fresnel peaking at the horizon) stay measured
+    // about the mirror direction, flagged horizon_cut as before: only backscatter is reframed.
+    if (p.fromLightDeg >= p.offsetDeg) return std::nullopt;
     render::Scene s = scene;
     s.light.chartCenter = p.direction;
     return s;

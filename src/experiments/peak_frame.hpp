@@ -3,7 +3,8 @@
 // whose lobe peaks back toward the light, 2 theta_i from the mirror direction). The automatic framing and the
 // reference measure about the chart's centre, the mirror direction; here the twin's lobe is searched over the
 // whole visible hemisphere, and when the mirror direction lies outside the highlight region (its lobe value is
-// below threshold x peak) the measurement chart is centred on the peak instead (render::Light::chartCenter):
+// below threshold x peak), the peak is far from it (kFarPeakDeg) and backscattered (nearer the light direction
+// than the mirror direction) the measurement chart is centred on the peak instead (render::Light::chartCenter):
 // the shape is then that of the region about the peak, undistorted by the azimuthal-equidistant chart's
 // stretch far from its centre (rho / sin rho: 1.2 at 60 deg), and its centroid is relative to the peak.
 
@@ -13,6 +14,11 @@
 #include <string>
 
 namespace hilite::experiments {
+
+/// A peak is far from the mirror direction beyond this angle: there the azimuthal-equidistant chart about wr
+/// stretches lengths across the radius by rho / sin(rho) > 1.02. Off-specular shifts of microfacet lobes stay
+/// well inside it (they are bounded by the mirror direction's elevation, and are a few degrees for alpha <= 0.3).
+constexpr double kFarPeakDeg = 20.0;
 
 struct LobePeak {
     dvec3 direction{0, 0, 1};  ///< exitant direction of the twin's largest lobe value
@@ -28,7 +34,9 @@ struct LobePeak {
 LobePeak findPeak(const render::Scene& scene);
 
 /// The scene with its chart centred on the peak when the highlight must be framed about it (the mirror
-/// direction is outside the region L >= threshold x peak); nullopt when the mirror direction is inside, when
+/// direction is outside the region L >= threshold x peak, the peak is more than kFarPeakDeg from it and nearer
+/// the light direction than the mirror direction);
+/// nullopt when the mirror direction is inside or the peak near, when
 /// the scene already has a chart centre, when there is no highlight, and for bumps and point lights (framed by
 /// the analytic twin, and an eye that sits on the chart's centre, respectively).
 std::optional<render::Scene> frameAboutPeak(const render::Scene& scene, double threshold);

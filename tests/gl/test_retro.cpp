@@ -2,6 +2,7 @@
 // automatic framing finds its peak and measures the highlight about it; ordinary lobes stay about the mirror.
 
 #include "experiments/measure_scene.hpp"
+#include "brdf/ndf_table.hpp"
 #include "experiments/peak_frame.hpp"
 
 #include "gl/gl_fixture.hpp"
@@ -31,7 +32,7 @@ double angleDeg(const dvec3& a, const dvec3& b) {
 
 TEST_CASE("experiments::findPeak and frameAboutPeak") {
     SUBCASE("retroreflection: the peak is the light direction; framed about it beyond a lobe width from the mirror") {
-        for (double inc : {2.0, 30.0, 60.0, 75.0}) {
+        for (double inc : {10.5, 30.0, 60.0, 75.0}) {
             const render::Scene s = scene(brdf::Model::Retro, 1000, inc);
             const auto p = experiments::findPeak(s);
             CAPTURE(inc);
@@ -45,10 +46,12 @@ TEST_CASE("experiments::findPeak and frameAboutPeak") {
             CHECK(experiments::framedAbout(s, 0.5, offset).find("retroreflection") != std::string::npos);
             CHECK(offset == doctest::Approx(2 * inc).epsilon(1e-9));
         }
-        // At 1 deg the peak (2 deg from the mirror) is inside a lobe of half-width 2.13 deg about the mirror
-        // direction: nothing to reframe, and at normal incidence the two coincide.
+        // At 0.5 deg the peak (1 deg from the mirror) is inside a lobe of half-width 2.13 deg about the mirror
+        // direction, at normal incidence the two coincide, and up to 20 deg away (theta_i = 10) the chart about
+        // the mirror direction measures the lobe with less than 2% stretch: nothing to reframe.
         CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Retro, 1000, 0.5), 0.5));
         CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Retro, 1000, 0.0), 0.5));
+        CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Retro, 1000, 9.5), 0.5));
     }
     SUBCASE("lobes about the mirror direction stay there, off-specular shifts included") {
         render::Scene g = scene(brdf::Model::GGX, 0.3, 70);
@@ -60,6 +63,25 @@ TEST_CASE("experiments::findPeak and frameAboutPeak") {
         CHECK(experiments::framedAbout(g, 0.5, offset) == "mirror direction");
         CHECK(offset == 0.0);
         CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Phong, 1000, 60), 0.5));
+        // The shipped hand-painted NDF at 80 deg with Smith G and Schlick F: the peak moves 10 deg toward grazing
+        // and the mirror direction drops out of the half-maximum region, yet the peak is near: measured about wr.
+        render::Scene h = scene(brdf::Model::Tabulated, 0.1, 80);
+        h.brdf.ndfTable = brdf::parseNdfTable("0, 10\n1, 9.5\n2, 8\n3, 5\n4, 3.5\n6, 3\n9, 2\n12, 0.5\n15, 0\n", "h.csv");
+        h.brdf.geometry = brdf::Geometry::Smith;
+        h.brdf.fresnel = brdf::Fresnel::Schlick;
+        const auto q = experiments::findPeak(h);
+        CHECK(q.mirrorValue < 0.5 * q.value);
+        CHECK(q.offsetDeg < experiments::kFarPeakDeg);
+        CHECK_FALSE(experiments::frameAboutPeak(h, 0.5));
+        // GGX alpha 0.3 with Smith G and Schlick F at 45 deg: f E cos_i peaks at the horizon, 45 deg from the
+        // mirror direction, but forward: measured about wr (flagged horizon_cut), as before.
+        render::Scene r = scene(brdf::Model::GGX, 0.3, 45);
+        r.brdf.geometry = brdf::Geometry::Smith;
+        r.brdf.fresnel = brdf::Fresnel::Schlick;
+        const auto f = experiments::findPeak(r);
+        CHECK(f.offsetDeg > 40.0);
+        CHECK(f.fromLightDeg > f.offsetDeg);
+        CHECK_FALSE(experiments::frameAboutPeak(r, 0.5));
     }
 }
 
