@@ -222,6 +222,9 @@ render::Scene sceneOf(const SceneFlags& f) {
         render::bumpSpec(s);  // the material must have a slope distribution (InputError naming --bumps)
         if (s.brdf.diffuse != brdf::Diffuse::None)
             throw InputError("--bumps: the bump render is specular only (drop --diffuse)");
+        if (s.surface.filter == render::BumpFilter::Moments && s.brdf.model != brdf::Model::Beckmann)
+            throw InputError("--bump-filter moments: the prefilter's Gaussian is the slope distribution of beckmann "
+                             "bumps only (ggx bumps are a remapped normal map; use supersample or auto)");
     }
     return s;
 }

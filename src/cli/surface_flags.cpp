@@ -21,8 +21,8 @@ void addSurfaceFlags(CLI::App& app, SurfaceFlags& f) {
         ->capture_default_str();
     app.add_option("--bump-filter", f.bumpFilter,
                    "how a pixel integrates its bumps: supersample (Gaussian mirror patches) | moments (the footprint's "
-                   "realised slope moments, LEAN mapping: a prefilter) | auto (supersample while the centre pixel "
-                   "needs <= 64 patches per axis, moments beyond)")
+                   "realised slope moments, LEAN mapping: a prefilter; beckmann bumps) | auto (supersample while the "
+                   "centre pixel needs <= 64 patches per axis, moments beyond; ggx bumps: always supersample)")
         ->capture_default_str();
     app.add_flag("--prefilter-check", f.prefilterCheck,
                  "measure also renders the same frame with the moments prefilter and with the next seed, and reports "

@@ -14,6 +14,15 @@ double angleDeg(const dvec3& a, const dvec3& b) { return rad2deg(std::atan2(glm:
 }  // namespace
 
 LobePeak findPeak(const render::Scene& scene) {
+    // measureGl and the result row both ask for the same scene's peak: the last answer is kept (per thread),
+    // keyed by everything the lobe depends on (the BRDF, the light; the chart centre does not move the peak).
+    std::ostringstream key;
+    key.precision(17);
+    key << scene << " type=" << int(scene.light.type) << " eye=" << scene.eyeDistance << " table="
+        << scene.brdf.ndfTable.get() << " spectrum=" << scene.brdf.spectrum.get();
+    thread_local std::string lastKey;
+    thread_local LobePeak last;
+    if (key.str() == lastKey) return last;
     render::Scene mirror = scene;
     mirror.light.chartCenter.reset();
     const dvec3 eye = render::eyePosition(mirror), wr = mirror.light.chart().wr(), wi = scene.light.direction();
@@ -26,8 +35,8 @@ LobePeak findPeak(const render::Scene& scene) {
         if (v > p.value) p.value = v, p.direction = we;
     };
     for (const dvec3& c : {wr, wi, dvec3(0, 0, 1)}) consider(glm::normalize(dvec3(c.x, c.y, std::max(c.z, 1e-6))));
-    for (int i = 0; i < 60; ++i)
-        for (int j = 0; j < 120; ++j) consider(sphericalDirectionDeg(0.75 + 1.5 * i, 3.0 * j));
+    for (int i = 0; i < 30; ++i)
+        for (int j = 0; j < 60; ++j) consider(sphericalDirectionDeg(1.5 + 3.0 * i, 6.0 * j));
     // Pattern search in a chart about the best point: take the best of four neighbours, else halve the step.
     if (p.value > 0) {
         render::Scene about = mirror;
@@ -47,6 +56,8 @@ LobePeak findPeak(const render::Scene& scene) {
     p.mirrorValue = lobe(glm::normalize(dvec3(wr.x, wr.y, std::max(wr.z, 1e-6))));
     p.offsetDeg = angleDeg(p.direction, wr);
     p.fromLightDeg = angleDeg(p.direction, wi);
+    lastKey = key.str();
+    last = p;
     return p;
 }
 

@@ -5,7 +5,7 @@
 // any footprint's realised mean slope and slope covariance; its lobe is the Gaussian slope distribution with
 // those moments (a Beckmann lobe with the footprint's own covariance). Built from the realised geometry only:
 // no analytic D enters. Exact in distribution for the Beckmann fields (a Gaussian random field has Gaussian
-// slopes); for the GGX normal maps the Gaussian is an approximation (GGX slopes have no finite variance).
+// slopes); wrong for the GGX normal maps (GGX slopes have no finite variance), which the render never prefilters.
 //
 // Level 0 holds the exact moments of the rendered (bilinear) field over each cell between four texel centres,
 // so that level 0 cell (i, j) spans [(i + 0.5)/n, (i + 1.5)/n] x [(j + 0.5)/n, (j + 1.5)/n] (tile lengths); level L

@@ -76,7 +76,9 @@ bool usesMoments(const Scene& scene, const PinholeCamera& cam) {
         case BumpFilter::Moments: return true;
         case BumpFilter::Auto: break;
     }
-    return centreBumpSamples(scene, cam) > kMaxBumpSamples;
+    // The prefilter's Gaussian is the slope distribution of a Beckmann field only (see slope_moments.hpp):
+    // a GGX normal map stays supersampled, capped.
+    return scene.brdf.model == brdf::Model::Beckmann && centreBumpSamples(scene, cam) > kMaxBumpSamples;
 }
 
 }  // namespace hilite::render

@@ -25,8 +25,10 @@ double bumpMomentsLobe(const micro::Moments& M, const dvec3& we, const dvec3& wi
 int centreBumpSamples(const Scene& scene, const PinholeCamera& camera);
 /// The same at the pixel whose corner is at (px, py) (pixel units; the centre pixel's is (w/2, h/2)).
 int bumpSamplesAt(const Scene& scene, const PinholeCamera& camera, double px, double py);
-/// Whether this render uses the moments prefilter: BumpFilter::Moments, or Auto where the centre pixel
-/// needs more than kMaxBumpSamples patches per axis (supersampling no longer resolves the bumps there).
+/// Whether this render uses the moments prefilter: BumpFilter::Moments, or Auto on a Beckmann field where the
+/// centre pixel needs more than kMaxBumpSamples patches per axis (supersampling no longer resolves the bumps).
+/// GGX fields are never prefiltered automatically: their slopes are not Gaussian (measured at 1/128 px the
+/// Gaussian of their moments gives semi-axes 1.4-5x GGX's), and --bump-filter moments refuses them.
 bool usesMoments(const Scene& scene, const PinholeCamera& camera);
 
 }  // namespace hilite::render

@@ -164,3 +164,10 @@ TEST_CASE("cli tabulated NDF: bad tables are one-line errors naming file:line, e
     CHECK(ex.out.find("normalized by x") != std::string::npos);
     std::filesystem::remove(table);
 }
+
+TEST_CASE("cli --bump-filter moments refuses ggx bumps (their slopes are not Gaussian)") {
+    const auto r = hilite("measure --model ggx --bumps explicit --bump-filter moments --size 32");
+    CHECK(r.code == 2);
+    CHECK(lines(r.out) == 1);
+    CHECK(r.out.find("--bump-filter moments") != std::string::npos);
+}

@@ -64,6 +64,9 @@ TEST_CASE("render::usesMoments") {
     CHECK_FALSE(render::usesMoments(s, cam()));
     s.surface.bumpPeriodPx = 0.1;  // 80 patches: beyond the cap of 64
     CHECK(render::usesMoments(s, cam()));
+    s.brdf.model = brdf::Model::GGX;  // not Gaussian slopes: supersampled (capped) all the same
+    CHECK_FALSE(render::usesMoments(s, cam()));
+    s.brdf.model = brdf::Model::Beckmann;
     s.surface.filter = render::BumpFilter::Supersample;
     CHECK_FALSE(render::usesMoments(s, cam()));
     s.surface.filter = render::BumpFilter::Moments;
