@@ -1,5 +1,6 @@
 // Issue 10 terms, in the //@block format of brdf.glsl (the assembler reads blocks from both files):
-// explicit micro-geometry, a bump field of mirror facets under a soft sun. GLSL twin of src/render/bumps.cpp.
+// explicit micro-geometry, a bump field of mirror facets under a soft sun, supersampled (BumpGlint) or prefiltered
+// by its slope moments (BumpMoments). GLSL twin of src/render/bumps.cpp and src/render/bump_moments.cpp.
 
 // ---- Terms ----
 
