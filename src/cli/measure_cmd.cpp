@@ -26,7 +26,7 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     nlohmann::json j;
     j["model"] = brdf::toString(s.brdf.model);
     if (brdf::usesExponent(s.brdf.model)) j["exponent"] = s.brdf.exponent;
-    else j["roughness"] = s.brdf.roughness;
+    else if (s.brdf.model != brdf::Model::Tabulated) j["roughness"] = s.brdf.roughness;  // a table has no width knob
     if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable) {  // issue 10: the table and its normalization
         j["ndf_table"] = s.brdf.ndfTable->file;
         j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
