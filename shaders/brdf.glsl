@@ -159,8 +159,8 @@ float F_Dielectric(float cosTheta_i, float eta) {
 // a^2 = (a^2 + b^2 + eta^2 - k^2 - sin^2) / 2, Rs = (a^2+b^2 - 2a cos + cos^2) / (a^2+b^2 + 2a cos + cos^2),
 // Rp = Rs (cos^2 (a^2+b^2) - 2a cos sin^2 + sin^4) / (cos^2 (a^2+b^2) + 2a cos sin^2 + sin^4).
 // Stable forms (see src/brdf/fresnel.hpp): numerators as sums of squares, (a - cos)^2 + b^2 and
-// (a cos - sin^2)^2 + b^2 cos^2, never below 0 (the differences rounded to -1e-7 as eta -> 1: negative
-// radiance); a^2, b^2 each from the sum that does not cancel.
+// (a cos - sin^2)^2 + b^2 cos^2, never below 0 and without the cancellation that lost every digit of a small
+// F (eta = 1.0001, cos 0.9: F = 2.6e-9 came out 0); a^2, b^2 each from the sum that does not cancel.
 vec2 F_ConductorSP(float cosTheta_i, float eta, float k) {
     if (eta == 1.0 && k == 0.0) return vec2(0.0);  // matched index: no interface, F = 0 (0/0 at grazing)
     float c = clamp(cosTheta_i, 0.0, 1.0), c2 = c * c, s2 = 1.0 - c2;

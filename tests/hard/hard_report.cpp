@@ -40,7 +40,8 @@ std::string answer(const measure::Shape& s) {
 std::string pixelColumn(const SceneOutcome& o) {
     std::string p = o.pixels.nonFinite || o.pixels.negative ? "**non-finite or negative** " : "";
     if (o.pixels.compared == 0) return p + "finite, ≥ 0 (all 0)";
-    return p + num(o.pixels.maxRelError, 2) + " (≤ " + num(o.tolerance, 2) + ")";
+    const std::string tol = std::isinf(o.tolerance) ? "none: effectively_mirror" : "≤ " + num(o.tolerance, 2);
+    return p + num(o.pixels.maxRelError, 2) + " (" + tol + ")";
 }
 
 /// GL (automatic framing, 512^2) against the double reference for near-mirror lobes: the error of the

@@ -199,6 +199,13 @@ std::vector<TermCase> build() {
             return c;
         }(),
         exact("F_Conductor eta 1 k 0 at cos 0 (no interface: 0/0 unguarded)", 0.0, 1.0, 0.0, dvec4(0.0)),
+        [&] {
+            // A near-matched interface: F = 2.6e-9, below float's rounding of the terms; the stable forms keep
+            // 4 digits (the textbook differences gave 0).
+            TermCase c = exact("F_Conductor k 0 eta 1.0001 at cos 0.9 (F = 2.6e-9)", 0.9, 1.0001, 0.0, std::nullopt);
+            c.tolerance = 1e-3;
+            return c;
+        }(),
         exact("F_Conductor k 0 eta 1.5 at cos 1 (a dielectric)", 1.0, 1.5, 0.0, dvec4(glass, glass, glass, 0)),
         exact("F_Conductor k 0 eta 0.7 beyond the critical angle", 0.2, 0.7, 0.0, dvec4(1, 1, 1, 0)),
         exact("F_Conductor silver at cos 1 + 1e-7", 1.0 + 1e-7, 0.14, 4.15, std::nullopt),
