@@ -54,8 +54,11 @@ float D_BlinnPhong(float oneMinusNoH, float n) {
 // Beckmann NDF: D(h) = exp(-tan^2(theta_h) / m^2) / (pi m^2 cos^4(theta_h)). Beckmann & Spizzichino 1963.
 float D_Beckmann(float NoH, float sin2h, float m) {
     if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    if (m == 0.0) return 0.0;    // a perfect mirror: D is a delta at h = n (0/0 there), no finite sample of it
     float cos2 = NoH * NoH, m2 = m * m;
-    return exp(-sin2h / (cos2 * m2)) / (PI * m2 * cos2 * cos2);
+    float e = exp(-sin2h / (cos2 * m2));
+    if (e == 0.0) return 0.0;  // h near the horizon: cos2^2 underflows (NoH < 1e-10) only where e has; else 0/0
+    return e / (PI * m2 * cos2 * cos2);
 }
 //@end
 
@@ -63,7 +66,8 @@ float D_Beckmann(float NoH, float sin2h, float m) {
 // Trowbridge-Reitz / GGX NDF: D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2). Walter et al. 2007;
 // denominator as NoH^2 alpha^2 + |n x h|^2 (Filament) so it keeps its digits as alpha -> 0.
 float D_GGX(float NoH, float sin2h, float alpha) {
-    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    if (NoH <= 0.0) return 0.0;    // back-facing microfacet
+    if (alpha == 0.0) return 0.0;  // a perfect mirror: D is a delta at h = n (0/0 there), no finite sample of it
     float a2 = alpha * alpha;
     float d = NoH * NoH * a2 + sin2h;
     return a2 / (PI * d * d);
@@ -85,6 +89,7 @@ float angleFromSinCos(float s, float c) {
 // Cook & Torrance 1982.
 float D_Gaussian(float NoH, float sin2h, float m, float kG) {
     if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    if (m == 0.0) return 0.0;    // a perfect mirror: D is a delta at h = n (theta / m is 0/0 there)
     float t = angleFromSinCos(sqrt(sin2h), NoH) / m;
     return kG * exp(-t * t);
 }
@@ -94,16 +99,20 @@ float D_Gaussian(float NoH, float sin2h, float m, float kG) {
 // Anisotropic Beckmann: D(h) = exp(-((hx/ax)^2 + (hy/ay)^2) / hz^2) / (pi ax ay hz^4), h in the tangent
 // frame. Heitz 2014 "Understanding the masking-shadowing function" (the stretched Beckmann).
 float D_BeckmannAniso(float HoX, float HoY, float NoH, float ax, float ay) {
-    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    if (NoH <= 0.0) return 0.0;      // back-facing microfacet
+    if (ax * ay == 0.0) return 0.0;  // smooth along an axis: a delta there (HoX / 0), no finite sample of it
     float cos2 = NoH * NoH, x = HoX / ax, y = HoY / ay;
-    return exp(-(x * x + y * y) / cos2) / (PI * ax * ay * cos2 * cos2);
+    float e = exp(-(x * x + y * y) / cos2);
+    if (e == 0.0) return 0.0;  // as in D_Beckmann: cos2^2 may underflow only where e has, 0/0 otherwise
+    return e / (PI * ax * ay * cos2 * cos2);
 }
 //@end
 
 //@block D_GGXAniso needs common
 // Anisotropic GGX: D(h) = 1 / (pi ax ay ((hx/ax)^2 + (hy/ay)^2 + hz^2)^2). Burley 2012; Heitz 2014.
 float D_GGXAniso(float HoX, float HoY, float NoH, float ax, float ay) {
-    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    if (NoH <= 0.0) return 0.0;      // back-facing microfacet
+    if (ax * ay == 0.0) return 0.0;  // smooth along an axis: a delta there (HoX / 0), no finite sample of it
     float x = HoX / ax, y = HoY / ay;
     float d = x * x + y * y + NoH * NoH;
     return 1.0 / (PI * ax * ay * d * d);
@@ -126,6 +135,9 @@ vec3 F_Schlick(vec3 f0, float VoH) {
 // ct by sqrt(6e-8) = 2.4e-4, so within ~1e-3 rad of that angle GL and the double twin differ by up to
 // 4e-4 relative (measured); everywhere else by < 1e-5.
 vec2 F_DielectricSP(float cosTheta_i, float eta) {
+    // Matched index: no interface, F = 0 at every angle (at grazing the formulas are 0/0 for eta = 1, and
+    // the total-internal-reflection test would return 1 there instead).
+    if (eta == 1.0) return vec2(0.0);
     float ci = clamp(cosTheta_i, 0.0, 1.0);
     float sin2Theta_t = (1.0 - ci * ci) / (eta * eta);
     if (sin2Theta_t >= 1.0) return vec2(1.0);  // total internal reflection (eta < 1 beyond the critical angle)
@@ -146,15 +158,19 @@ float F_Dielectric(float cosTheta_i, float eta) {
 // tan, finite at grazing, Lagarde 2013): a^2 + b^2 = sqrt((eta^2 - k^2 - sin^2)^2 + 4 eta^2 k^2),
 // a^2 = (a^2 + b^2 + eta^2 - k^2 - sin^2) / 2, Rs = (a^2+b^2 - 2a cos + cos^2) / (a^2+b^2 + 2a cos + cos^2),
 // Rp = Rs (cos^2 (a^2+b^2) - 2a cos sin^2 + sin^4) / (cos^2 (a^2+b^2) + 2a cos sin^2 + sin^4).
+// Stable forms (see src/brdf/fresnel.hpp): numerators as sums of squares, (a - cos)^2 + b^2 and
+// (a cos - sin^2)^2 + b^2 cos^2, never below 0 and without the cancellation that lost every digit of a small
+// F (eta = 1.0001, cos 0.9: F = 2.6e-9 came out 0); a^2, b^2 each from the sum that does not cancel.
 vec2 F_ConductorSP(float cosTheta_i, float eta, float k) {
+    if (eta == 1.0 && k == 0.0) return vec2(0.0);  // matched index: no interface, F = 0 (0/0 at grazing)
     float c = clamp(cosTheta_i, 0.0, 1.0), c2 = c * c, s2 = 1.0 - c2;
-    float t0 = eta * eta - k * k - s2;
-    float a2b2 = sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
-    float a = sqrt(max(0.0, 0.5 * (a2b2 + t0)));
-    float t1 = a2b2 + c2, t2 = 2.0 * a * c;
-    float Rs = (t1 - t2) / (t1 + t2);
-    float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
-    return vec2(Rs, Rs * (t3 - t4) / (t3 + t4));
+    float t0 = eta * eta - k * k - s2, e2k2 = 2.0 * eta * eta * k * k;
+    float a2b2 = sqrt(t0 * t0 + 2.0 * e2k2);
+    float a2 = t0 >= 0.0 ? 0.5 * (a2b2 + t0) : e2k2 / (a2b2 - t0);
+    float b2 = t0 > 0.0 ? e2k2 / (a2b2 + t0) : 0.5 * (a2b2 - t0);
+    float a = sqrt(a2), ac = a * c;
+    float Rs = ((a - c) * (a - c) + b2) / ((a + c) * (a + c) + b2);
+    return vec2(Rs, Rs * ((ac - s2) * (ac - s2) + b2 * c2) / ((ac + s2) * (ac + s2) + b2 * c2));
 }
 // Exact unpolarized conductor Fresnel: F = (Rs + Rp) / 2.
 float F_Conductor(float cosTheta_i, float eta, float k) {
@@ -175,7 +191,9 @@ vec3 F_Spectral(float cosTheta_i, vec2 etaK[HILITE_SPECTRAL_SAMPLES], vec3 weigh
 
 //@block Lambda_GGX
 // Smith Lambda for GGX: Lambda = (-1 + sqrt(1 + alpha^2 tan^2(theta))) / 2. Heitz 2014, eq. 72.
+// cosTheta in (0, 1]: at cosTheta -> 0 Lambda -> +inf (G -> 0; the G2 forms turn it into 0).
 float Lambda_GGX(float cosTheta, float alpha) {
+    if (alpha == 0.0) return 0.0;  // a smooth surface masks nothing (and 0 * inf at the horizon is NaN)
     float cos2 = cosTheta * cosTheta;
     float tan2 = max(0.0, 1.0 - cos2) / cos2;
     return 0.5 * (-1.0 + sqrt(1.0 + alpha * alpha * tan2));
@@ -194,6 +212,7 @@ float lambdaBeckmannRational(float a) {
 //@block Lambda_Beckmann needs lambdaBeckmannRational
 // Smith Lambda for Beckmann by the rational approximation.
 float Lambda_Beckmann(float cosTheta, float m) {
+    if (m == 0.0) return 0.0;  // a smooth surface masks nothing (and 0 / 0 at the horizon)
     float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
     if (sinTheta == 0.0) return 0.0;  // normal incidence: no masking
     return lambdaBeckmannRational(cosTheta / (m * sinTheta));
@@ -204,7 +223,9 @@ float Lambda_Beckmann(float cosTheta, float m) {
 // alpha^2 tan^2(theta) of the stretched surface seen from w in the tangent frame: (x^2 ax^2 + y^2 ay^2) / z^2,
 // the isotropic Lambda with alpha projected on w's azimuth (Heitz 2014).
 float alphaTan2Aniso(vec3 w, float ax, float ay) {
-    return (w.x * w.x * ax * ax + w.y * w.y * ay * ay) / (w.z * w.z);
+    float num = w.x * w.x * ax * ax + w.y * w.y * ay * ay;
+    if (num == 0.0) return 0.0;  // normal incidence or a smooth surface: 0, also where z^2 underflows (0/0)
+    return num / (w.z * w.z);
 }
 //@end
 
@@ -219,7 +240,7 @@ float Lambda_GGXAniso(vec3 w, float ax, float ay) {
 // Smith Lambda for anisotropic Beckmann: the rational fit at a = 1 / (alpha(phi) tan(theta)).
 float Lambda_BeckmannAniso(vec3 w, float ax, float ay) {
     float a2t2 = alphaTan2Aniso(w, ax, ay);
-    if (a2t2 == 0.0) return 0.0;  // normal incidence: no masking
+    if (a2t2 == 0.0) return 0.0;  // normal incidence or a smooth surface: no masking
     return lambdaBeckmannRational(1.0 / sqrt(a2t2));
 }
 //@end
@@ -261,21 +282,26 @@ vec3 Fd_Lambert(vec3 rho) {
 vec3 Fd_OrenNayar(vec3 rho, float sigma, float NoL, float NoV, float LoV) {
     float s2 = sigma * sigma;
     float A = 1.0 - 0.5 * s2 / (s2 + 0.33), B = 0.45 * s2 / (s2 + 0.09);
-    float t = max(0.0, LoV - NoL * NoV) / max(NoL, NoV);
+    float top = max(NoL, NoV);
+    float t = top > 0.0 ? max(0.0, LoV - NoL * NoV) / top : 0.0;  // both on the horizon: 0/0
     return rho * (INV_PI * (A + B * t));
 }
 //@end
 
 //@block HalfVector
-// Half vector and its scalars, computed once per pixel. wi = -wo (no half vector) only happens with wo
-// below the horizon, which the caller has already rejected; the guard keeps the division finite anyway.
+// Half vector and its scalars, computed once per pixel. Above the horizon s = wi + wo has s.z = wi.z + wo.z
+// > 0, a sum without cancellation, so h exists and is accurate even for a mirror pair at grazing
+// (s = (0, 0, 2 cos theta_i), as short as 3e-16 for theta_i < 90 deg in double). Only wi = -wo (below the
+// horizon, which the caller has rejected) has none: the guard catches |s|^2 = 0 or below the smallest
+// normal float (flushed to 0 on llvmpipe), where s / |s| would be 0/0 or overflow. (A relative guard such as
+// |s| < 1e-6 would also drop the true peak of every mirror pair with theta_i within 3e-5 deg of 90.)
 struct HalfVector { float NoH; float sin2h; float oneMinusNoH; float VoH; vec3 h; bool valid; };
 HalfVector halfVector(vec3 wi, vec3 wo) {
     HalfVector hv = HalfVector(0.0, 0.0, 1.0, 0.0, vec3(0.0), false);
     vec3 s = wi + wo;
-    float len = sqrt(dot(s, s));
-    if (len < 1e-6) return hv;  // degenerate: wi = -wo to float precision
-    vec3 h = s / len;
+    float len2 = dot(s, s);
+    if (!(len2 >= 1.17549435e-38)) return hv;  // wi = -wo: no half vector (0/0)
+    vec3 h = s / sqrt(len2);
     hv.h = h;
     hv.NoH = h.z;
     hv.sin2h = h.x * h.x + h.y * h.y;                            // |n x h|^2, no 1 - NoH^2 cancellation

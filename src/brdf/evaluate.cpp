@@ -1,5 +1,6 @@
 #include "brdf/evaluate.hpp"
 
+#include "brdf/half_vector.hpp"
 #include "brdf/spectral.hpp"
 #include "brdf/terms.hpp"
 
@@ -8,27 +9,6 @@
 namespace hilite::brdf {
 
 namespace {
-
-/// Half vector, NoH, |n x h|^2 and VoH, computed once for a direction pair.
-struct HalfVector {
-    double NoH = 0, sin2h = 0, oneMinusNoH = 1, VoH = 0;
-    dvec3 h{0.0};
-    bool valid = false;  ///< false when wi = -wo: no half vector exists
-};
-
-HalfVector halfVector(const dvec3& wi, const dvec3& wo) {
-    HalfVector hv;
-    const dvec3 s = wi + wo;
-    const double len = glm::length(s);
-    if (len < 1e-12) return hv;  // wi = -wo (only possible with wo below the horizon): degenerate
-    hv.h = s / len;
-    hv.NoH = hv.h.z;
-    hv.sin2h = hv.h.x * hv.h.x + hv.h.y * hv.h.y;                   // |n x h|^2, exact where 1 - NoH^2 cancels
-    hv.oneMinusNoH = hv.NoH > 0 ? hv.sin2h / (1.0 + hv.NoH) : 1.0;  // 1 - cos = sin^2 / (1 + cos)
-    hv.VoH = glm::dot(wo, hv.h);
-    hv.valid = true;
-    return hv;
-}
 
 double distribution(const Params& p, const HalfVector& hv) {
     if (p.anisotropic() && allowsAnisotropy(p.model)) {
@@ -92,14 +72,7 @@ dvec3 toTangent(const Params& p, const dvec3& w) {
     return {w.x * c + w.y * s, -w.x * s + w.y * c, w.z};
 }
 
-double distribution(const Params& p, const dvec3& h) {
-    HalfVector hv;
-    hv.h = h;
-    hv.NoH = h.z;
-    hv.sin2h = h.x * h.x + h.y * h.y;
-    hv.oneMinusNoH = h.z > 0 ? hv.sin2h / (1.0 + h.z) : 1.0;
-    return distribution(p, hv);
-}
+double distribution(const Params& p, const dvec3& h) { return distribution(p, halfVectorOf(h)); }
 
 dvec3 fresnel(const Params& p, double cosTheta) {
     switch (p.fresnel) {

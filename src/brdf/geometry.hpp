@@ -11,8 +11,10 @@
 namespace hilite::brdf {
 
 /// Smith Lambda for GGX: Lambda(w) = (-1 + sqrt(1 + alpha^2 tan^2(theta))) / 2. Heitz 2014
-/// "Understanding the masking-shadowing function", eq. 72; tan^2 = sin^2 / cos^2.
+/// "Understanding the masking-shadowing function", eq. 72; tan^2 = sin^2 / cos^2. cosTheta in (0, 1]:
+/// at cosTheta -> 0 Lambda -> +inf (G -> 0, the right limit; the G2 forms below turn it into 0).
 inline double Lambda_GGX(double cosTheta, double alpha) {
+    if (alpha == 0.0) return 0.0;  // a smooth surface masks nothing (and 0 * inf at the horizon is NaN)
     const double cos2 = cosTheta * cosTheta;
     const double tan2 = std::max(0.0, 1.0 - cos2) / cos2;
     return 0.5 * (-1.0 + std::sqrt(1.0 + alpha * alpha * tan2));
@@ -27,6 +29,7 @@ inline double lambdaBeckmannRational(double a) {
 
 /// Smith Lambda for Beckmann by the rational approximation above.
 inline double Lambda_Beckmann(double cosTheta, double m) {
+    if (m == 0.0) return 0.0;  // a smooth surface masks nothing (and 0 / 0 at the horizon)
     const double sinTheta = safeSqrt(1.0 - cosTheta * cosTheta);
     if (sinTheta == 0.0) return 0.0;  // normal incidence: no masking
     return lambdaBeckmannRational(cosTheta / (m * sinTheta));
@@ -37,7 +40,9 @@ inline double Lambda_Beckmann(double cosTheta, double m) {
 /// Heitz 2014, the anisotropic forms of Lambda. x, y enter squared: no 1 - cos^2 cancellation. z > 0: the
 /// callers have rejected directions at or below the horizon.
 inline double alphaTan2Aniso(const dvec3& w, double ax, double ay) {
-    return (w.x * w.x * ax * ax + w.y * w.y * ay * ay) / (w.z * w.z);
+    const double num = w.x * w.x * ax * ax + w.y * w.y * ay * ay;
+    if (num == 0.0) return 0.0;  // normal incidence or a smooth surface: 0, also where z^2 underflows (0/0)
+    return num / (w.z * w.z);
 }
 
 /// Smith Lambda for anisotropic GGX: (-1 + sqrt(1 + alpha(phi)^2 tan^2(theta))) / 2.
@@ -48,7 +53,7 @@ inline double Lambda_GGXAniso(const dvec3& w, double ax, double ay) {
 /// Smith Lambda for anisotropic Beckmann: the rational fit at a = 1 / (alpha(phi) tan(theta)).
 inline double Lambda_BeckmannAniso(const dvec3& w, double ax, double ay) {
     const double a2t2 = alphaTan2Aniso(w, ax, ay);
-    if (a2t2 == 0.0) return 0.0;  // normal incidence: no masking
+    if (a2t2 == 0.0) return 0.0;  // normal incidence or a smooth surface: no masking
     return lambdaBeckmannRational(1.0 / std::sqrt(a2t2));
 }
 

@@ -11,6 +11,7 @@ double gaussianNormalization(double m) {
     // Last value per thread first: the integrators call this once per sample with the same m.
     thread_local double lastM = -1.0, lastK = 0.0;
     if (m == lastM) return lastK;
+    if (m == 0.0) return 0.0;  // a delta: infinite k_G, returned as 0 (see ndf.hpp)
     static std::mutex mutex;
     static std::map<double, double> cache;
     std::lock_guard<std::mutex> lock(mutex);

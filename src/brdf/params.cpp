@@ -92,6 +92,10 @@ bool isMicrofacet(Model m) {
 }
 bool usesExponent(Model m) { return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn; }
 bool allowsAnisotropy(Model m) { return m == Model::Beckmann || m == Model::GGX; }
+bool isDelta(const Params& p) {
+    if (!isMicrofacet(p.model) || usesExponent(p.model)) return false;  // an exponent is finite (<= 1e8)
+    return p.roughness == 0.0 || (p.anisotropic() && allowsAnisotropy(p.model) && p.alphaY() == 0.0);
+}
 
 std::ostream& operator<<(std::ostream& os, Model m) { return os << toString(m); }
 std::ostream& operator<<(std::ostream& os, Fresnel f) { return os << toString(f); }

@@ -84,6 +84,10 @@ struct Params {
     double alphaY() const { return roughnessY.value_or(roughness); }
 };
 
+/// A perfect mirror: a microfacet model with roughness 0 (along either axis when anisotropic). Its lobe is
+/// a delta: every term returns 0 (no finite point sample of it exists) and the measurement says `mirror`.
+bool isDelta(const Params& p);
+
 std::ostream& operator<<(std::ostream&, const Params&);
 std::ostream& operator<<(std::ostream&, Model);
 std::ostream& operator<<(std::ostream&, Fresnel);
@@ -92,7 +96,15 @@ std::ostream& operator<<(std::ostream&, Diffuse);
 
 /// Allowed ranges, checked at the CLI boundary (the error names the flag and the range).
 constexpr double kMinExponent = 0.0, kMaxExponent = 1e8;
-constexpr double kMinRoughness = 1e-4, kMaxRoughness = 10.0;
+/// Roughness 0 is accepted: a perfect mirror (isDelta). Values in (0, kMinNonzeroRoughness) are clamped up
+/// to it at the CLI, with a warning: below it float32 breaks down in the shader (GGX's alpha^4 in the
+/// denominator underflows for alpha < 3e-10, and 1 / (pi alpha^2) nears FLT_MAX), and every lobe is
+/// already 8x narrower than what float directions resolve (measurement flag `effectively_mirror`).
+constexpr double kMinRoughness = 0.0, kMaxRoughness = 10.0;
+constexpr double kMinNonzeroRoughness = 1e-7;
+/// `hilite brdf albedo` and `normalization` integrate the lobe numerically: graded Gauss-Legendre panels
+/// resolve lobes down to this width (brdf/integrate.hpp).
+constexpr double kMinIntegrableRoughness = 1e-4;
 /// eta below 0.01 (or eta = k = 0) makes the conductor formula 0/0; measured visible metals have
 /// eta in [0.03, 5] and k below 10, dielectrics eta in [1, 4].
 constexpr double kMinEta = 0.01, kMaxEta = 100.0;

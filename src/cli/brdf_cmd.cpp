@@ -128,8 +128,20 @@ brdf::Params fresnelParams(BrdfFlags f) {
     return p;
 }
 
+/// The quadrature of `albedo` resolves lobes down to kMinIntegrableRoughness; a mirror (roughness 0,
+/// which the renderer accepts) would integrate to a silent 0. Checked before brdfParams, so that its
+/// warnings about small roughness do not precede the error.
+void checkIntegrable(const SceneFlags& f) {
+    const auto model = brdf::parseModel(f.model);
+    if (!model || !brdf::isMicrofacet(*model) || brdf::usesExponent(*model)) return;
+    checkRange("--roughness", f.roughness, brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
+}
+
 int runAlbedo(const BrdfFlags& f) {
+    checkIntegrable(f.scene);
     const brdf::Params p = brdfParams(f.scene);
+    if (p.anisotropic() && brdf::allowsAnisotropy(p.model))
+        checkRange("--roughness-y", p.alphaY(), brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
     const auto thetas = parseIncidence(f.scene.incidence, true);
     const double phi = checkRange("--azimuth", f.scene.azimuth, -360, 360);
     if (!f.json)
@@ -173,7 +185,7 @@ int runNormalization(const BrdfFlags& f) {
                          "')");
     const bool exponent = brdf::usesExponent(*model);
     const auto values = exponent ? parseList("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent)
-                                 : parseList("--roughness", f.roughness, brdf::kMinRoughness, brdf::kMaxRoughness);
+                                 : parseList("--roughness", f.roughness, brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
     if (!f.json)
         std::cout << "# int D(h) (n.h) dw_h, model=" << f.scene.model << "\n#    roughness    exponent    integral\n";
     for (double v : values) {

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -66,10 +67,18 @@ void printTableRow(const nlohmann::json& j) {
     std::string flags;
     for (const auto& fl : j["flags"]) flags += (flags.empty() ? "" : ",") + fl.get<std::string>();
     auto num = [&](const char* k) { return j[k].is_null() ? NAN : j[k].get<double>(); };
-    std::printf("%-9s %6.2f %8.5f %8.5f %9.4f %9.4f %7.2f %8.4f %8.4f %8.4f %8.4f  %s\n",
-                j["model"].get<std::string>().c_str(), num("incidence_deg"), num("aspect"), num("eccentricity"),
-                num("major_deg"), num("minor_deg"), num("orientation_deg"), num("centroid_u_deg"),
-                num("centroid_v_deg"), num("fwhm_u_deg"), num("fwhm_v_deg"), flags.c_str());
+    // An angle: 4 decimals, or 3 significant digits below 1e-3 deg (near-mirror lobes would print 0.0000).
+    auto deg = [&](const char* k, int width) {
+        const double v = num(k);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, v != 0 && std::abs(v) < 1e-3 ? "%*.2e" : "%*.4f", width, v);
+        return std::string(buf);
+    };
+    std::printf("%-9s %6.2f %8.5f %8.5f %s %s %7.2f %s %s %s %s  %s\n", j["model"].get<std::string>().c_str(),
+                num("incidence_deg"), num("aspect"), num("eccentricity"), deg("major_deg", 9).c_str(),
+                deg("minor_deg", 9).c_str(), num("orientation_deg"), deg("centroid_u_deg", 8).c_str(),
+                deg("centroid_v_deg", 8).c_str(), deg("fwhm_u_deg", 8).c_str(), deg("fwhm_v_deg", 8).c_str(),
+                flags.c_str());
 }
 
 namespace {

@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <iostream>
+#include <set>
 #include <sstream>
 
 namespace hilite::cli {
@@ -42,6 +44,29 @@ std::vector<std::string> split(const std::string& s, char sep) {
     return out;
 }
 
+/// Prints "hilite: warning: MSG" on stderr, once per process for each message (a sweep repeats them).
+void warnOnce(const std::string& msg) {
+    static std::set<std::string> said;
+    if (said.insert(msg).second) std::cerr << "hilite: warning: " << msg << "\n";
+}
+
+/// A roughness in [0, 10]: 0 is a perfect mirror (the measurement says `mirror`); values in (0, 1e-7) are
+/// raised to 1e-7 with a warning (see brdf::kMinNonzeroRoughness: float32 cannot render narrower lobes).
+/// `used`: the model takes a roughness (else the value is only checked).
+double roughnessFlag(const std::string& flag, double v, bool used) {
+    checkRange(flag, v, brdf::kMinRoughness, brdf::kMaxRoughness);
+    if (!used) return v;
+    if (v == 0.0)
+        warnOnce(flag + " 0 is a perfect mirror: its lobe is a delta no pixel can sample, rendered black and "
+                        "measured as 'mirror'");
+    if (v > 0.0 && v < brdf::kMinNonzeroRoughness) {
+        warnOnce(flag + " " + fmt(v) + " raised to " + fmt(brdf::kMinNonzeroRoughness) +
+                 ", the narrowest lobe float32 can render (it is already 'effectively_mirror')");
+        return brdf::kMinNonzeroRoughness;
+    }
+    return v;
+}
+
 }  // namespace
 
 double parseNumberFlag(const std::string& flag, const std::string& text) { return parseNumber(flag, text); }
@@ -65,10 +90,10 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
         ->capture_default_str();
     app.add_option("--roughness", f.roughness,
                    "beckmann m / ggx alpha / gaussian m in radians (the formulas' symbols; alpha_x if anisotropic), "
-                   "in [1e-4, 10]")
+                   "in [0, 10]: 0 is a perfect mirror, (0, 1e-7) is raised to 1e-7 with a warning")
         ->capture_default_str();
     app.add_option("--roughness-y", f.roughnessY,
-                   "anisotropic beckmann/ggx: alpha_y, in [1e-4, 10] (absent: isotropic)");
+                   "anisotropic beckmann/ggx: alpha_y, in [0, 10] as --roughness (absent: isotropic)");
     app.add_option("--tangent-angle", f.tangentAngle,
                    "anisotropic: azimuth of the alpha_x axis in degrees, [-360, 360]")
         ->capture_default_str();
@@ -136,12 +161,12 @@ brdf::Params brdfParams(const SceneFlags& f) {
     brdf::Params p;
     p.model = choice("--model", f.model, brdf::parseModel, brdf::modelNames());
     p.exponent = checkRange("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent);
-    p.roughness = checkRange("--roughness", f.roughness, brdf::kMinRoughness, brdf::kMaxRoughness);
+    const bool usesRoughness = p.model != brdf::Model::None && !brdf::usesExponent(p.model);
+    p.roughness = roughnessFlag("--roughness", f.roughness, usesRoughness);
     if (!f.roughnessY.empty()) {
         if (!brdf::allowsAnisotropy(p.model))
             throw InputError("--roughness-y: anisotropy needs --model beckmann or ggx (got '" + f.model + "')");
-        p.roughnessY = checkRange("--roughness-y", parseNumber("--roughness-y", f.roughnessY), brdf::kMinRoughness,
-                                  brdf::kMaxRoughness);
+        p.roughnessY = roughnessFlag("--roughness-y", parseNumber("--roughness-y", f.roughnessY), true);
     }
     p.tangentAngleDeg = checkRange("--tangent-angle", f.tangentAngle, -360, 360);
     p.geometry = choice("--geometry", f.geometry, brdf::parseGeometry, brdf::geometryNames());

@@ -17,6 +17,10 @@ const char* toString(Flag f) {
         case Flag::UnderResolved: return "under_resolved";
         case Flag::NoHighlight: return "no_highlight";
         case Flag::CoversFrame: return "covers_frame";
+        case Flag::Mirror: return "mirror";
+        case Flag::EffectivelyMirror: return "effectively_mirror";
+        case Flag::UnboundedAtHorizon: return "unbounded_at_horizon";
+        case Flag::NotStarShaped: return "not_star_shaped";
     }
     return "unknown";
 }

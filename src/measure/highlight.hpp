@@ -19,9 +19,20 @@ enum class Flag {
     UnderResolved,  ///< fewer than Options::minPixelsAcross pixels across the minor axis
     NoHighlight,    ///< peak is 0 (or nothing visible): the shape fields are left 0
     CoversFrame,    ///< every visible pixel is in the region: the frame shows no outside
+    Mirror,         ///< a perfect mirror (roughness 0): the lobe is a delta with no finite shape; fields left 0
+    /// the lobe's half-width is below what float32 directions resolve (experiments/diagnose.hpp): the GL
+    /// numbers are reported but quantization-limited; the double reference still measures it
+    EffectivelyMirror,
+    /// the lobe grows without bound towards the horizon (G = 1: f ~ 1 / cos(theta_o)), so it has no peak and
+    /// no half-maximum region: the numbers describe where the sampling stopped, not the lobe
+    UnboundedAtHorizon,
+    /// reference only: the region is not star-shaped about its peak (a ring, two lobes), so the polar
+    /// contour from the peak misses part of it; the GL pixels have no such assumption
+    NotStarShaped,
 };
 
-/// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame" (the CLI/JSON spelling).
+/// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame", "mirror",
+/// "effectively_mirror", "unbounded_at_horizon", "not_star_shaped" (the CLI/JSON spelling).
 const char* toString(Flag);
 std::ostream& operator<<(std::ostream&, Flag);
 
@@ -90,10 +101,11 @@ struct LobeFunction {
 
 /// \brief Double-precision reference, independent of GL: ~1e-9 relative on smooth contours (closed-form
 /// tests), ~1e-5 where the horizon cuts the contour (a kink: the trapezoid rule drops to second order).
-/// Flags: HorizonCut, NoHighlight (Clipped, UnderResolved, CoversFrame do not apply). ~5 ms.
+/// Flags: HorizonCut, NoHighlight, NotStarShaped (Clipped, UnderResolved, CoversFrame do not apply). ~5 ms.
 /// \param searchRadius bounds the peak search: a disc of this radius (radians) about the hint.
 /// \param hint_u, hint_v a starting guess for the peak (radians).
-/// The region is assumed star-shaped about the peak (true of every single-lobe BRDF here).
+/// The region is assumed star-shaped about the peak (true of every single-lobe BRDF here); a coarse grid
+/// over the search disc checks it, and NotStarShaped says when it fails.
 Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u = 0,
                        double hint_v = 0);
 

@@ -28,9 +28,14 @@ struct Candidate {
     double L = -1.0;  ///< -1: none yet (L >= 0 wherever defined)
 };
 
+/// The chart covers rho = |(u, v)| < pi. Beyond it the chart's direction(u, v) wraps round onto directions
+/// already covered, so a ray whose bracketing steps jump over the band below the horizon would find the
+/// region again there: a lobe filling the hemisphere (GGX alpha 1, Phong n 0) measured 1e4 degrees across.
+bool inChart(dvec2 q) { return glm::dot(q, q) < kPi * kPi; }
+
 /// L at q if q is visible and within the search disc, else -1 (so that any visible point beats it).
 double searchValue(const LobeFunction& f, dvec2 q, dvec2 hint, double radius) {
-    if (glm::length(q - hint) > radius || !f.visible(q.x, q.y)) return -1.0;
+    if (glm::length(q - hint) > radius || !inChart(q) || !f.visible(q.x, q.y)) return -1.0;
     return f.lobe(q.x, q.y);
 }
 
@@ -72,7 +77,7 @@ Candidate refinePeak(const LobeFunction& f, Candidate best, double h, dvec2 hint
     return best;
 }
 
-/// Membership of the region along one ray from the peak: visible and L >= T.
+/// Membership of the region along one ray from the peak: visible (within the chart) and L >= T.
 struct Ray {
     const LobeFunction& f;
     dvec2 p, dir;
@@ -81,11 +86,11 @@ struct Ray {
     dvec2 at(double r) const { return p + r * dir; }
     bool visible(double r) const {
         dvec2 q = at(r);
-        return f.visible(q.x, q.y);
+        return inChart(q) && f.visible(q.x, q.y);
     }
     bool in(double r) const {
         dvec2 q = at(r);
-        return f.visible(q.x, q.y) && f.lobe(q.x, q.y) >= T;
+        return visible(r) && f.lobe(q.x, q.y) >= T;
     }
 };
 
@@ -97,8 +102,8 @@ struct Boundary {
 /// Where the ray leaves the region: bracketed by steps from the guess r0 > 0 (the previous ray's radius;
 /// growing steps, x1.1 then squared each time, so a far or a zero radius costs a few steps), then bisected.
 /// The region is assumed star-shaped about the peak, so the first way out is the boundary. That holds for
-/// the single-lobe BRDFs measured here (L falls along every ray from the peak) and is not checked: a region
-/// with a notch or an arm would get the contour of the part seen from the peak, silently.
+/// the single-lobe BRDFs measured here (L falls along every ray from the peak); a region with a notch or an
+/// arm gets the contour of the part seen from the peak, which beyondContour() detects on a coarse grid.
 Boundary findBoundary(const Ray& ray, double r0) {
     constexpr double kMaxRadius = 2.0 * kPi, kMinRadius = 1e-15;
     double lo = 0.0, hi = r0, step = 1.1;
@@ -145,6 +150,27 @@ AreaMoments polarMoments(const std::vector<double>& r, dvec2 p) {
     return m;
 }
 
+/// Whether a point of the coarse grid over the search disc is in the region yet beyond the contour r(phi)
+/// seen from the peak p (with 0.1% to spare for the chord between rays): then the region is not star-shaped
+/// about p (a ring, two lobes) and the polar moments silently miss part of it.
+bool beyondContour(const LobeFunction& f, const std::vector<double>& r, dvec2 p, double T, dvec2 hint,
+                   double radius) {
+    const int K = int(r.size());
+    const double cell = 2.0 * radius / kCoarseGrid;
+    for (int j = 0; j < kCoarseGrid; ++j) {
+        for (int i = 0; i < kCoarseGrid; ++i) {
+            const dvec2 q = hint + dvec2(-radius + (i + 0.5) * cell, -radius + (j + 0.5) * cell);
+            if (searchValue(f, q, hint, radius) < T) continue;
+            const dvec2 d = q - p;
+            const double x = std::atan2(d.y, d.x) / (2.0 * kPi) * K;
+            const int k0 = int(std::floor(x));
+            const double t = x - k0, rc = (1 - t) * r[size_t((k0 + K) % K)] + t * r[size_t((k0 + 1 + K) % K)];
+            if (glm::length(d) > 1.001 * rc + 1e-12) return true;
+        }
+    }
+    return false;
+}
+
 }  // namespace
 
 Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u, double hint_v) {
@@ -178,6 +204,7 @@ Shape measureReference(const LobeFunction& f, const Options& opt, double searchR
     s.fwhm_u_deg = rad2deg(r[0] + r[kContourAngles / 2]);
     s.fwhm_v_deg = rad2deg(r[kContourAngles / 4] + r[3 * kContourAngles / 4]);
     if (cut) s.flags.push_back(Flag::HorizonCut);
+    if (beyondContour(f, r, peak.q, opt.threshold * peak.L, hint, searchRadius)) s.flags.push_back(Flag::NotStarShaped);
     return s;
 }
 

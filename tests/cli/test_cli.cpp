@@ -121,3 +121,35 @@ TEST_CASE("cli help documents every subcommand") {
     const auto m = hilite("measure --help");
     CHECK(m.out.find("--threshold") != std::string::npos);
 }
+
+TEST_CASE("cli::measure roughness policy: 0 is a mirror, (0, 1e-7) is raised with a warning, never silently") {
+    SUBCASE("roughness 0: a warning on stderr, the measurement says mirror") {
+        const auto r = hilite("measure --model ggx --roughness 0 --incidence 45 --json --size 64");
+        CHECK(r.code == 0);
+        CHECK(r.out.find("warning: --roughness 0 is a perfect mirror") != std::string::npos);
+        CHECK(r.out.find("\"flags\":[\"mirror\"]") != std::string::npos);
+        const auto ref = hilite("measure --model beckmann --roughness 0 --incidence 45 --json --reference", true);
+        CHECK(ref.out.find("\"flags\":[\"mirror\"]") != std::string::npos);
+    }
+    SUBCASE("roughness 1e-9: raised to 1e-7, said on stderr, and the row carries 1e-7") {
+        const auto r = hilite("measure --model ggx --roughness 1e-9 --incidence 45 --json --reference");
+        CHECK(r.code == 0);
+        CHECK(r.out.find("--roughness 1e-09 raised to 1e-07") != std::string::npos);
+        CHECK(r.out.find("\"roughness\":1e-07") != std::string::npos);
+    }
+    SUBCASE("roughness-y 0 on an anisotropic lobe is a mirror too") {
+        const auto r = hilite("measure --model ggx --roughness 0.1 --roughness-y 0 --incidence 30 --json", true);
+        CHECK(r.code == 0);
+        CHECK(r.out.find("\"mirror\"") != std::string::npos);
+    }
+    SUBCASE("the GL path says effectively_mirror below float resolution, the reference measures it") {
+        const auto gl = hilite("measure --model ggx --roughness 1e-7 --incidence 45 --json --size 128", true);
+        CHECK(gl.out.find("effectively_mirror") != std::string::npos);
+        const auto ref = hilite("measure --model ggx --roughness 1e-7 --incidence 45 --json --reference", true);
+        CHECK(ref.out.find("\"flags\":[]") != std::string::npos);
+    }
+    SUBCASE("a model without roughness takes no warning for it") {
+        const auto r = hilite("measure --model phong --roughness 0 --incidence 45 --json --reference");
+        CHECK(r.out.find("warning") == std::string::npos);
+    }
+}

@@ -1,0 +1,145 @@
+// One doctest case per row of each hard-case table and per path (tests/hard/hard_cases.hpp): add a row to
+// scene_cases.cpp or term_cases.cpp and two cases appear, "hard scene gl: NAME" and "hard scene double: NAME"
+// (or "hard term ..."). Every case asserts numbers, never times.
+
+#include "hard/hard_cases.hpp"
+
+#include "gl/gl_fixture.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <deque>
+#include <string>
+#include <utility>
+
+using namespace hilite;
+using namespace hilite::hard;
+
+namespace {
+
+/// Chart coordinates, absolute (rad): float rho = atan(s, c) up to pi/2 from the mirror direction, and
+/// llvmpipe's atan good to ~1e-6 rad (see D_Gaussian in brdf.glsl): measured 3e-6 in 160-degree frames.
+constexpr double kUvTolerance = 1e-5;
+/// Pixel (u, v) area: the shader's float arithmetic on the camera basis and rho / sin(rho).
+constexpr double kWeightTolerance = 1e-4;
+/// GL measurement vs the double reference, where neither is diagnosed (as tests/experiments/). A horizon cut
+/// takes the pixel edge as the horizon (measure_image.cpp), a first-order error: 2% on the semi-major axis.
+constexpr double kAspectTolerance = 0.005, kMajorTolerance = 0.01, kMajorToleranceCut = 0.02;
+
+void checkMeasurement(const measure::Shape& s, const std::vector<measure::Flag>& expected) {
+    INFO("shape: " << s);
+    CHECK(shapeFinite(s));
+    CHECK(numbersOrDiagnosis(s));
+    CHECK(flagList(s.flags) == flagList(expected));
+}
+
+/// Diagnoses after which the GL and reference numbers describe different things (or none).
+bool comparable(const measure::Shape& s) {
+    using measure::Flag;
+    for (Flag f : {Flag::Clipped, Flag::UnderResolved, Flag::NoHighlight, Flag::CoversFrame, Flag::Mirror,
+                   Flag::EffectivelyMirror, Flag::UnboundedAtHorizon, Flag::NotStarShaped})
+        if (s.has(f)) return false;
+    return true;
+}
+
+void sceneGl(size_t i) {
+    const SceneCase& c = sceneCases().at(i);
+    INFO("scene: " << c.scene);
+    const SceneOutcome o = runSceneGl(*test::glEnv().renderer, c);
+    INFO("pixels: " << o.pixels.values << " values, " << o.pixels.compared << " compared, max relative error "
+                    << o.pixels.maxRelError << " (tolerance " << o.tolerance << "), uv error "
+                    << o.pixels.maxUvError << " rad, weight error " << o.pixels.maxWeightError);
+    CHECK(o.pixels.nonFinite == 0);
+    CHECK(o.pixels.negative == 0);
+    CHECK(o.pixels.maxRelError <= o.tolerance);
+    CHECK(o.pixels.maxUvError <= kUvTolerance);
+    CHECK(o.pixels.maxWeightError <= kWeightTolerance);
+    checkMeasurement(o.measurement.shape, c.glFlags);
+    const measure::Shape ref = experiments::measureReference(c.scene, c.setup.options).shape;
+    if (comparable(o.measurement.shape) && comparable(ref)) {
+        INFO("reference: " << ref);
+        CHECK(std::abs(o.measurement.shape.aspect - ref.aspect) <= kAspectTolerance);
+        const bool cut = o.measurement.shape.has(measure::Flag::HorizonCut);
+        CHECK(std::abs(o.measurement.shape.major_deg / ref.major_deg - 1.0) <= (cut ? kMajorToleranceCut : kMajorTolerance));
+    }
+}
+
+void sceneDouble(size_t i) {
+    const SceneCase& c = sceneCases().at(i);
+    INFO("scene: " << c.scene);
+    const SceneOutcome o = runSceneDouble(c);
+    CHECK(o.pixels.values > 0);
+    CHECK(o.pixels.nonFinite == 0);
+    CHECK(o.pixels.negative == 0);
+    checkMeasurement(o.measurement.shape, c.refFlags);
+}
+
+void checkTermValue(const TermCase& c, const TermOutcome& o) {
+    for (int j = 0; j < c.components; ++j) {
+        INFO("component " << j << ": " << o.value[j] << " (twin " << o.twin[j] << ")");
+        CHECK(std::isfinite(o.value[j]));
+        CHECK(o.value[j] >= 0.0);
+    }
+}
+
+void termGl(size_t i) {
+    const TermCase& c = termCases().at(i);
+    test::glEnv();  // makes the context current
+    const TermOutcome o = runTermGl(c);
+    checkTermValue(c, o);
+    INFO("relative error against the twin: " << o.error);
+    CHECK(o.error <= c.tolerance);
+}
+
+void termDouble(size_t i) {
+    const TermCase& c = termCases().at(i);
+    const TermOutcome o = runTermDouble(c);
+    checkTermValue(c, o);
+    INFO("relative error against the exact answer: " << o.error);
+    CHECK(o.error <= 1e-9);
+}
+
+// ---- Registration: one case per row and path ----
+
+constexpr size_t kMaxRows = 96;  ///< raise it when a table outgrows it (a check below says so)
+std::deque<std::string>& names() {
+    static std::deque<std::string> n;  // doctest keeps the name pointers: stable storage
+    return n;
+}
+
+template <size_t I>
+void sceneGlCase() { sceneGl(I); }
+template <size_t I>
+void sceneDoubleCase() { sceneDouble(I); }
+template <size_t I>
+void termGlCase() { termGl(I); }
+template <size_t I>
+void termDoubleCase() { termDouble(I); }
+
+void add(void (*f)(), const std::string& name) {
+    names().push_back(name);
+    doctest::detail::regTest(doctest::detail::TestCase(f, __FILE__, unsigned(names().size()),
+                                                       doctest_detail_test_suite_ns::getCurrentTestSuite()) *
+                             names().back().c_str());
+}
+
+template <size_t... I>
+int registerAll(std::index_sequence<I...>) {
+    const size_t scenes = sceneCases().size(), terms = termCases().size();
+    ((I < scenes ? add(sceneGlCase<I>, "hard scene gl: " + sceneCases()[I].name) : void()), ...);
+    ((I < scenes ? add(sceneDoubleCase<I>, "hard scene double: " + sceneCases()[I].name) : void()), ...);
+    ((I < terms ? add(termGlCase<I>, "hard term gl: " + termCases()[I].name) : void()), ...);
+    ((I < terms ? add(termDoubleCase<I>, "hard term double: " + termCases()[I].name) : void()), ...);
+    return 0;
+}
+
+const int registered = registerAll(std::make_index_sequence<kMaxRows>());
+
+}  // namespace
+
+TEST_CASE("hard tables fit the registration") {
+    CHECK(registered == 0);
+    CHECK(sceneCases().size() <= kMaxRows);
+    CHECK(termCases().size() <= kMaxRows);
+}
