@@ -43,6 +43,14 @@ float Phong_Classic(float oneMinusCosR, float n) {
 }
 //@end
 
+//@block Retro_Normalized needs common
+// Retroreflective lobe: f = (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi), back toward the light (street signs,
+// cat's eyes). Lafortune et al. 1997 (the cosine lobe with Cx = Cy = Cz = 1); normalized as Phong's.
+float Retro_Normalized(float oneMinusCosB, float n) {
+    return (n + 2.0) * (0.5 * INV_PI) * powCosStable(oneMinusCosB, n);
+}
+//@end
+
 //@block D_BlinnPhong needs common
 // Blinn-Phong NDF: D(h) = (n+2)/(2 pi) cos^n(theta_h). Blinn 1977; int D (n.h) dw = 1.
 float D_BlinnPhong(float oneMinusNoH, float n) {
@@ -116,6 +124,47 @@ float D_GGXAniso(float HoX, float HoY, float NoH, float ax, float ay) {
     float x = HoX / ax, y = HoY / ay;
     float d = x * x + y * y + NoH * NoH;
     return 1.0 / (PI * ax * ay * d * d);
+}
+//@end
+
+//@block D_Tabulated needs common
+// Tabulated (hand-painted) NDF: D(theta_h) linear in theta_h between the rows (theta_k, D_k) of a table, 0 beyond
+// the last row, normalized on the CPU so that int D (n.h) dw = 1 (src/brdf/ndf_table.hpp). The row is found by
+// bisection, as in the twin. theta_h from (sin, cos) as angleFromSinCos of D_Gaussian (copied: one NDF a program).
+uniform vec2 uNdfTable[HILITE_NDF_TABLE_ROWS];  // (theta_h radians, D), theta_h increasing from 0
+float ndfTableTheta(float s, float c) {
+    float t = s / (1.0 + c);            // tan(theta / 2)
+    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 4)
+    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 8)
+    float t2 = t * t;
+    return 8.0 * t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 + t2 * (-1.0 / 7.0 + t2 * (1.0 / 9.0 - t2 / 11.0)))));
+}
+float D_Tabulated(float NoH, float sin2h) {
+    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    float t = ndfTableTheta(sqrt(sin2h), NoH);
+    vec2 last = uNdfTable[HILITE_NDF_TABLE_ROWS - 1];
+    if (t >= last.x) return t == last.x ? last.y : 0.0;  // beyond the table: 0
+    int lo = 0, hi = HILITE_NDF_TABLE_ROWS - 1;  // invariant: theta_lo <= t < theta_hi
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (uNdfTable[mid].x <= t) lo = mid; else hi = mid;
+    }
+    vec2 a = uNdfTable[lo], b = uNdfTable[hi];
+    return a.y + (b.y - a.y) * ((t - a.x) / (b.x - a.x));
+}
+//@end
+
+//@block Lambda_Tabulated needs common
+// Smith Lambda of a tabulated NDF: (1 + Lambda) cos(theta) = int max(0, w.m) D dm, integrated on the CPU at
+// theta_o = 0, 1, .., 90 degrees (Heitz 2014 eq. 17) and interpolated linearly in theta_o.
+uniform float uNdfProjectedArea[91];
+float Lambda_Tabulated(float cosTheta) {
+    if (cosTheta >= 1.0) return 0.0;  // normal incidence: nothing is masked
+    float c = max(cosTheta, 0.0);
+    float x = atan(sqrt(max(0.0, 1.0 - c * c)), c) * (180.0 / PI);
+    int k = min(int(x), 89);
+    float area = mix(uNdfProjectedArea[k], uNdfProjectedArea[k + 1], x - float(k));
+    return max(0.0, area / cosTheta - 1.0);
 }
 //@end
 

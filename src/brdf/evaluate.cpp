@@ -1,6 +1,7 @@
 #include "brdf/evaluate.hpp"
 
 #include "brdf/half_vector.hpp"
+#include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "brdf/terms.hpp"
 
@@ -9,6 +10,11 @@
 namespace hilite::brdf {
 
 namespace {
+
+const NdfTable& table(const Params& p) {
+    if (!p.ndfTable) throw std::logic_error("model tabulated without a table (Params::ndfTable)");
+    return *p.ndfTable;
+}
 
 double distribution(const Params& p, const HalfVector& hv) {
     if (p.anisotropic() && allowsAnisotropy(p.model)) {
@@ -21,8 +27,10 @@ double distribution(const Params& p, const HalfVector& hv) {
         case Model::Beckmann: return D_Beckmann(hv.NoH, hv.sin2h, p.roughness);
         case Model::GGX: return D_GGX(hv.NoH, hv.sin2h, p.roughness);
         case Model::Gaussian: return D_Gaussian(hv.NoH, hv.sin2h, p.roughness, gaussianNormalization(p.roughness));
+        case Model::Tabulated: return D_Tabulated(hv.NoH, hv.sin2h, table(p));
         case Model::Phong:
         case Model::PhongClassic:
+        case Model::Retro:
         case Model::None: break;
     }
     return 0.0;
@@ -44,8 +52,10 @@ double lambda(const Params& p, const dvec3& w) {
         case Model::Beckmann:
         case Model::Gaussian: return Lambda_Beckmann(w.z, p.roughness);
         case Model::Blinn: return Lambda_Beckmann(w.z, blinnExponentToBeckmann(p.exponent));
+        case Model::Tabulated: return Lambda_Tabulated(w.z, table(p));
         case Model::Phong:
         case Model::PhongClassic:
+        case Model::Retro:
         case Model::None: break;
     }
     return 0.0;
@@ -98,6 +108,10 @@ dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo) {
         const double oneMinusCosR = 0.5 * glm::dot(d, d);
         return dvec3(p.model == Model::Phong ? Phong_Normalized(oneMinusCosR, p.exponent)
                                              : Phong_Classic(oneMinusCosR, p.exponent));
+    }
+    if (p.model == Model::Retro) {
+        const dvec3 d = wo - wi;  // 1 - cos(beta) = |d|^2 / 2
+        return dvec3(Retro_Normalized(0.5 * glm::dot(d, d), p.exponent));
     }
     const HalfVector hv = halfVector(wi, wo);
     if (!hv.valid) return dvec3(0.0);

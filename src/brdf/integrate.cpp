@@ -1,6 +1,7 @@
 #include "brdf/integrate.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "brdf/ndf_table.hpp"
 
 #include <cmath>
 
@@ -74,9 +75,10 @@ dvec3 microfacetAlbedo(const Params& p, const dvec3& wi) {
     });
 }
 
-/// Reflection lobes, integrated about the mirror direction wr: wo = cos(b) wr + sin(b)(cos(g) e1 + sin(g) e2).
+/// Reflection lobes, integrated about their axis wr (the mirror direction; wi itself for the retroreflective
+/// lobe): wo = cos(b) wr + sin(b)(cos(g) e1 + sin(g) e2).
 dvec3 reflectionLobeAlbedo(const Params& p, const dvec3& wi) {
-    const dvec3 wr(-wi.x, -wi.y, wi.z);
+    const dvec3 wr = p.model == Model::Retro ? wi : dvec3(-wi.x, -wi.y, wi.z);
     const dvec3 e1 =
         glm::normalize(std::abs(wr.z) < 0.9 ? glm::cross(wr, dvec3(0, 0, 1)) : glm::cross(wr, dvec3(1, 0, 0)));
     const dvec3 e2 = glm::cross(wr, e1);
@@ -122,6 +124,8 @@ double lobeWidth(const Params& p) {
     double w = 0.5 * kPi;
     if (usesExponent(p.model))
         w = std::sqrt(2.0 / (p.exponent + 2.0));
+    else if (p.model == Model::Tabulated && p.ndfTable)
+        w = p.ndfTable->halfWidth;
     else if (p.model != Model::None)
         w = std::atan(std::min(p.alphaX(), p.alphaY()));
     // 1e-6: n = 1e8 would give 1.4e-4 anyway; the floor only keeps the first panel of a degenerate
@@ -140,7 +144,7 @@ dvec3 albedo(const Params& p, double thetaDeg, double phiDeg) {
     dvec3 rho = p.diffuse == Diffuse::None ? dvec3(0.0) : diffuseAlbedo(p, wi);
     if (isMicrofacet(p.model))
         rho += microfacetAlbedo(p, wi);
-    else if (p.model == Model::Phong || p.model == Model::PhongClassic)
+    else if (p.model == Model::Phong || p.model == Model::PhongClassic || p.model == Model::Retro)
         rho += reflectionLobeAlbedo(p, wi);
     return rho;
 }

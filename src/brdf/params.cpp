@@ -1,5 +1,6 @@
 #include "brdf/params.hpp"
 
+#include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 
 #include <ostream>
@@ -23,7 +24,7 @@ std::vector<std::string> names(const E (&all)[N]) {
 }
 
 constexpr Model kModels[] = {Model::Phong,    Model::PhongClassic, Model::Blinn, Model::Gaussian,
-                             Model::Beckmann, Model::GGX,          Model::None};
+                             Model::Beckmann, Model::GGX,          Model::None,  Model::Retro, Model::Tabulated};
 constexpr Fresnel kFresnels[] = {Fresnel::None, Fresnel::Schlick, Fresnel::Dielectric, Fresnel::Conductor,
                                  Fresnel::Spectral};
 constexpr Geometry kGeometries[] = {Geometry::None, Geometry::Implicit, Geometry::CookTorrance,
@@ -46,6 +47,8 @@ const char* toString(Model m) {
         case Model::PhongClassic: return "phong-classic";
         case Model::Gaussian: return "gaussian";
         case Model::None: return "none";
+        case Model::Retro: return "retro";
+        case Model::Tabulated: return "tabulated";
     }
     return "?";
 }
@@ -88,9 +91,12 @@ std::vector<std::string> geometryNames() { return names(kGeometries); }
 std::vector<std::string> diffuseNames() { return names(kDiffuses); }
 
 bool isMicrofacet(Model m) {
-    return m == Model::Blinn || m == Model::Beckmann || m == Model::GGX || m == Model::Gaussian;
+    return m == Model::Blinn || m == Model::Beckmann || m == Model::GGX || m == Model::Gaussian ||
+           m == Model::Tabulated;
 }
-bool usesExponent(Model m) { return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn; }
+bool usesExponent(Model m) {
+    return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn || m == Model::Retro;
+}
 bool allowsAnisotropy(Model m) { return m == Model::Beckmann || m == Model::GGX; }
 bool isDelta(const Params& p) {
     if (!isMicrofacet(p.model) || usesExponent(p.model)) return false;  // an exponent is finite (<= 1e8)
@@ -106,6 +112,9 @@ std::ostream& operator<<(std::ostream& os, const Params& p) {
     os << "model=" << toString(p.model);
     if (usesExponent(p.model))
         os << " exponent=" << p.exponent;
+    else if (p.model == Model::Tabulated && p.ndfTable)
+        os << " ndf_table=" << p.ndfTable->file << " rows=" << p.ndfTable->theta.size()
+           << " normalization=" << p.ndfTable->normalization;
     else if (p.model != Model::None)
         os << " roughness=" << p.roughness;
     if (p.anisotropic() && allowsAnisotropy(p.model))

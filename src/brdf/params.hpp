@@ -14,6 +14,7 @@
 namespace hilite::brdf {
 
 struct Spectrum;  // brdf/spectral.hpp
+struct NdfTable;  // brdf/ndf_table.hpp
 
 /// Specular model: a reflection lobe about the mirror direction, or a microfacet NDF of the half vector.
 enum class Model {
@@ -24,6 +25,8 @@ enum class Model {
     PhongClassic,  ///< classic unnormalized Phong lobe cos^n(alpha_r) (k_s = 1): not energy-conserving
     Gaussian,      ///< microfacet, Gaussian NDF k_G exp(-(theta_h / m)^2) in the angle theta_h
     None,          ///< no specular lobe: the diffuse term alone
+    Retro,         ///< retroreflective lobe (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi): back toward the light
+    Tabulated,     ///< microfacet, a hand-painted NDF: D(theta_h) from a table (Params::ndfTable, brdf/ndf_table.hpp)
 };
 enum class Fresnel {
     None,        ///< F = 1
@@ -59,7 +62,7 @@ std::vector<std::string> geometryNames();
 std::vector<std::string> diffuseNames();
 
 bool isMicrofacet(Model m);
-bool usesExponent(Model m);      ///< phong, phong-classic, blinn take an exponent; beckmann, ggx, gaussian a roughness
+bool usesExponent(Model m);      ///< phong, phong-classic, blinn, retro take an exponent; beckmann, ggx, gaussian a roughness
 bool allowsAnisotropy(Model m);  ///< beckmann, ggx
 
 struct Params {
@@ -74,6 +77,7 @@ struct Params {
     dvec3 eta{1.5, 1.5, 1.5};                  ///< dielectric / conductor: real part of the relative index n_t / n_i
     dvec3 k{0.0, 0.0, 0.0};                    ///< conductor: extinction coefficient
     std::shared_ptr<const Spectrum> spectrum;  ///< spectral: the sampled metal (see brdf/spectral.hpp)
+    std::shared_ptr<const NdfTable> ndfTable;  ///< tabulated: the normalized table (see brdf/ndf_table.hpp)
     Geometry geometry = Geometry::Implicit;
     Diffuse diffuse = Diffuse::None;
     dvec3 albedo{0.5, 0.5, 0.5};  ///< lambert / oren-nayar rho

@@ -25,4 +25,12 @@ inline double Phong_Normalized(double oneMinusCosR, double n) {
 /// dims as n grows (Lewis 1994 "Making shaders more physically plausible").
 inline double Phong_Classic(double oneMinusCosR, double n) { return powCosStable(oneMinusCosR, n); }
 
+/// Retroreflective lobe: f = (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi): light goes back toward the light
+/// (street signs, cat's eyes). Lafortune et al. 1997 "Non-linear approximation of reflectance functions" (their
+/// cosine lobe (Cx ux vx + Cy uy vy + Cz uz vz)^n with Cx = Cy = Cz = 1, i.e. (wi.wo)^n); normalized as Phong's
+/// (albedo 1 at normal incidence, less elsewhere), reciprocal. oneMinusCosB = |wo - wi|^2 / 2.
+inline double Retro_Normalized(double oneMinusCosB, double n) {
+    return (n + 2.0) * (0.5 * kInvPi) * powCosStable(oneMinusCosB, n);
+}
+
 }  // namespace hilite::brdf

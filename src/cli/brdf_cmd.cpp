@@ -6,6 +6,7 @@
 #include "brdf/bihemispherical.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
+#include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "cli/commands.hpp"
 #include "experiments/strip.hpp"
@@ -181,8 +182,20 @@ int runFresnel(const BrdfFlags& f) {
 int runNormalization(const BrdfFlags& f) {
     auto model = brdf::parseModel(f.scene.model);
     if (!model || !brdf::isMicrofacet(*model))
-        throw InputError("--model: normalization needs an NDF: blinn, gaussian, beckmann, ggx (got '" + f.scene.model +
-                         "')");
+        throw InputError("--model: normalization needs an NDF: blinn, gaussian, beckmann, ggx, tabulated (got '" +
+                         f.scene.model + "')");
+    if (*model == brdf::Model::Tabulated) {  // issue 10: the table, normalized when read, and the factor applied
+        const brdf::Params p = brdfParams(f.scene);
+        const double integral = brdf::ndfIntegral(p);
+        nlohmann::ordered_json j{{"ndf_table", p.ndfTable->file}, {"normalization", p.ndfTable->normalization},
+                                 {"integral", integral}};
+        if (f.json)
+            std::cout << j.dump() << "\n";
+        else
+            std::cout << "# int D(h) (n.h) dw_h, model=tabulated " << p.ndfTable->file << ": the file's D x "
+                      << std::setprecision(10) << p.ndfTable->normalization << "\n" << std::setw(12) << integral << "\n";
+        return 0;
+    }
     const bool exponent = brdf::usesExponent(*model);
     const auto values = exponent ? parseList("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent)
                                  : parseList("--roughness", f.roughness, brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
@@ -241,7 +254,7 @@ Action addBrdf(CLI::App& app) {
     auto fa = subcommandFlags(
         *albedo, "0:85:5", "",
         {"--model", "--exponent", "--roughness", "--roughness-y", "--tangent-angle", "--fresnel", "--material", "--eta",
-         "--k", "--f0", "--geometry", "--diffuse", "--albedo", "--sigma", "--incidence", "--azimuth"});
+         "--k", "--f0", "--geometry", "--diffuse", "--albedo", "--sigma", "--incidence", "--azimuth", "--ndf-table"});
     albedo->add_flag("--json", fa->json, kJsonHelp);
     albedo->footer("A light at 90 degrees delivers nothing: albedo 0 there by the horizon convention.");
 
@@ -251,7 +264,7 @@ Action addBrdf(CLI::App& app) {
     fresnel->add_flag("--json", ff->json, kJsonHelp);
 
     CLI::App* normalization = app.add_subcommand("normalization", "int D(h) (n.h) dw_h of an NDF (1 if normalized)");
-    auto fn = subcommandFlags(*normalization, "0", "", {"--model", "--roughness-y", "--tangent-angle"});
+    auto fn = subcommandFlags(*normalization, "0", "", {"--model", "--roughness-y", "--tangent-angle", "--ndf-table"});
     normalization->add_option("--roughness", fn->roughness, "roughness values: list or START:STOP:STEP, in [1e-4, 10]")
         ->capture_default_str();
     normalization->add_option("--exponent", fn->exponent, "exponents (blinn): list or START:STOP:STEP, in [0, 1e8]")

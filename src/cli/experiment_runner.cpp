@@ -23,9 +23,15 @@ const std::vector<std::string> kMeasureColumns = {
     "centroid_u_deg", "centroid_v_deg", "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg",
     "area_deg2", "cos_incidence", "flags", "renders", "size", "fov_deg", "minor_pixels", "method",
     "matched_parameter", "render_ms", "measure_ms",
+    // issue 10: what the highlight is measured about (retroreflection: its peak), a tabulated NDF's factor
+    "framed_about", "peak_offset_deg", "ndf_table_normalization",
     // issue 10, explicit micro-geometry (empty on flat surfaces): see cli/micro_fields.hpp
     "log2_bump_period_px", "bump_samples_center", "analytic_aspect", "analytic_major_deg", "analytic_minor_deg",
-    "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms", "slope_ks"};
+    "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms", "slope_ks", "bump_filter_used",
+    "prefilter_aspect", "prefilter_aspect_minus_analytic", "prefilter_major_over_analytic",
+    "prefilter_minor_over_analytic", "next_seed_aspect", "next_seed_aspect_minus_analytic",
+    "next_seed_major_over_analytic", "next_seed_minor_over_analytic", "prefilter_block_error",
+    "supersample_block_noise", "prefilter_error", "prefilter_blocks", "prefilter_unresolved_blocks"};
 const std::vector<std::string> kNotSceneParams = {"help", "scene", "output", "float", "exposure", "json",
                                                   "reference", "gl-backend", "incidence"};
 

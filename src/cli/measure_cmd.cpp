@@ -8,6 +8,8 @@
 #include "core/error.hpp"
 #include "experiments/measure_bumps.hpp"
 #include "experiments/measure_scene.hpp"
+#include "experiments/peak_frame.hpp"
+#include "brdf/ndf_table.hpp"
 #include "cli/micro_fields.hpp"
 #include "experiments/tolerance.hpp"
 
@@ -26,7 +28,11 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     nlohmann::json j;
     j["model"] = brdf::toString(s.brdf.model);
     if (brdf::usesExponent(s.brdf.model)) j["exponent"] = s.brdf.exponent;
-    else j["roughness"] = s.brdf.roughness;
+    else if (s.brdf.model != brdf::Model::Tabulated) j["roughness"] = s.brdf.roughness;  // a table has no width knob
+    if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable) {  // issue 10: the table and its normalization
+        j["ndf_table"] = s.brdf.ndfTable->file;
+        j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
+    }
     j["fresnel"] = brdf::toString(s.brdf.fresnel);
     j["geometry"] = brdf::toString(s.brdf.geometry);
     j["incidence_deg"] = s.light.incidenceDeg;
@@ -38,6 +44,9 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["azimuth_deg"] = s.light.azimuthDeg;
     j["threshold"] = f.threshold;
     j["method"] = method;
+    double offsetDeg = 0;  // issue 10: a highlight far from the mirror direction is measured about its peak
+    j["framed_about"] = experiments::framedAbout(s, f.threshold, offsetDeg);
+    j["peak_offset_deg"] = offsetDeg;
     for (auto [key, v] : {std::pair{"aspect", r.aspect}, {"eccentricity", r.eccentricity}, {"major_deg", r.major_deg},
                           {"minor_deg", r.minor_deg}, {"orientation_deg", r.orientation_deg},
                           {"centroid_u_deg", r.centroid_u_deg}, {"centroid_v_deg", r.centroid_v_deg},
@@ -54,7 +63,7 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["minor_pixels"] = std::isfinite(r.minor_pixels) ? nlohmann::json(r.minor_pixels) : nlohmann::json(nullptr);
     j["render_ms"] = m.render_ms;
     j["measure_ms"] = m.measure_ms;
-    if (s.surface.bumps) addMicroFields(j, s, m, f.threshold);  // issue 10: bump period, analytic twin
+    if (s.surface.bumps) addMicroFields(j, s, m, f.threshold, width, height);  // issue 10: bump period, analytic twin
     return j;
 }
 
@@ -74,6 +83,11 @@ void printTableRow(const nlohmann::json& j) {
         std::snprintf(buf, sizeof buf, v != 0 && std::abs(v) < 1e-3 ? "%*.2e" : "%*.4f", width, v);
         return std::string(buf);
     };
+    if (j.value("framed_about", std::string("mirror direction")) != "mirror direction") {
+        char about[96];
+        std::snprintf(about, sizeof about, "about the peak, %.4g deg from the mirror direction", num("peak_offset_deg"));
+        flags += (flags.empty() ? "" : " ") + std::string("(") + about + ")";
+    }
     std::printf("%-9s %6.2f %8.5f %8.5f %s %s %7.2f %s %s %s %s  %s\n", j["model"].get<std::string>().c_str(),
                 num("incidence_deg"), num("aspect"), num("eccentricity"), deg("major_deg", 9).c_str(),
                 deg("minor_deg", 9).c_str(), num("orientation_deg"), deg("centroid_u_deg", 8).c_str(),
@@ -180,6 +194,7 @@ nlohmann::json measureRow(render::Renderer* renderer, const ResolvedMeasure& r, 
     const auto m = experiments::measure(renderer, scene, setup);
     nlohmann::json j = measurementRow(scene, m, f, setup.width, setup.height, setup.cpu ? "cpu" : "gl");
     j["supersample"] = setup.supersample;
+    if (renderer) addPrefilterFields(j, *renderer, scene, setup, m);  // issue 10: --prefilter-check
     return j;
 }
 

@@ -1,6 +1,8 @@
 #include "cli/micro_fields.hpp"
 
 #include "experiments/measure_bumps.hpp"
+#include "experiments/prefilter_check.hpp"
+#include "render/bump_moments.hpp"
 #include "micro/masking.hpp"
 #include "render/bumps.hpp"
 
@@ -24,11 +26,15 @@ double num(const nlohmann::json& r, const char* k) { return r.contains(k) && r[k
 
 }  // namespace
 
-void addMicroFields(nlohmann::json& row, const render::Scene& s, const experiments::Measurement& m, double threshold) {
+void addMicroFields(nlohmann::json& row, const render::Scene& s, const experiments::Measurement& m, double threshold,
+                    int width, int height) {
+    const PinholeCamera cam = experiments::measurementCamera(s, m.center, m.fovDeg, width, height);
+    row["bump_filter"] = render::toString(s.surface.filter);
+    row["bump_filter_used"] = render::usesMoments(s, cam) ? "moments" : "supersample";
     const double period = s.surface.bumpPeriodPx;
     row["log2_bump_period_px"] = std::log2(period);
-    // The centre pixel's footprint spans 1/period periods across and 1/(period cos) along the view.
-    row["bump_samples_center"] = render::bumpSamples(s.surface, 1.0 / (period * std::max(1e-3, m.center.z)));
+    // The patches per axis the centre pixel's footprint needs (uncapped: beyond 64 the moments prefilter runs).
+    row["bump_samples_center"] = render::centreBumpSamples(s, cam);
     measure::Options opt;
     opt.threshold = threshold;
     const experiments::Measurement a = experiments::measureReference(experiments::analyticScene(s), opt);
@@ -45,6 +51,29 @@ void addMicroFields(nlohmann::json& row, const render::Scene& s, const experimen
         if (!std::isfinite(row[k].get<double>())) row[k] = nullptr;
 }
 
+void addPrefilterFields(nlohmann::json& row, render::Renderer& renderer, const render::Scene& s,
+                        const experiments::MeasureSetup& setup, const experiments::Measurement& m) {
+    if (!s.surface.bumps || !s.surface.prefilterCheck) return;
+    const PinholeCamera cam = experiments::measurementCamera(s, m.center, m.fovDeg, setup.width, setup.height);
+    if (render::centreBumpSamples(s, cam) > render::kMaxBumpSamples) return;  // supersampling does not run here
+    const experiments::PrefilterCheck c = experiments::checkPrefilter(renderer, s, setup, m);
+    const double a = num(row, "analytic_aspect"), amaj = num(row, "analytic_major_deg"),
+                 amin = num(row, "analytic_minor_deg");
+    auto put = [&](const std::string& key, double v) { row[key] = std::isfinite(v) ? nlohmann::json(v) : nullptr; };
+    for (const auto& [prefix, shape] : {std::pair<std::string, const measure::Shape*>{"prefilter", &c.moments},
+                                        {"next_seed", &c.nextSeed}}) {
+        put(prefix + "_aspect", shape->aspect);
+        put(prefix + "_aspect_minus_analytic", shape->aspect - a);
+        put(prefix + "_major_over_analytic", shape->major_deg / amaj);
+        put(prefix + "_minor_over_analytic", shape->minor_deg / amin);
+    }
+    put("prefilter_block_error", c.blockError);
+    put("supersample_block_noise", c.blockNoise);
+    put("prefilter_error", c.prefilterError);
+    row["prefilter_blocks"] = c.blocks;
+    row["prefilter_unresolved_blocks"] = c.unresolvedBlocks;
+}
+
 std::string microSummary(const std::vector<nlohmann::json>& rows) {
     std::map<double, std::vector<const nlohmann::json*>> byIncidence;
     for (const auto& r : rows)
@@ -57,27 +86,56 @@ std::string microSummary(const std::vector<nlohmann::json>& rows) {
           "bumps shrink, the render converges to f = D F G / (4 cos theta_i cos theta_o) with the implicit G = cos "
           "theta_i cos theta_o (f = D F / 4: the shape set by the NDF alone; the render traces no masking, see below) "
           "with the bumps' NDF, blurred by the sun; `analytic_*` is the CPU reference of that BRDF under a "
-          "point-like light.\n\n";
+          "point-like light. `filter`: how each pixel integrates its bumps, `supersample` (S x S Gaussian mirror "
+          "patches, each centred on its mean slope) or `moments` (the footprint's realised slope mean and covariance, "
+          "LEAN mapping: a prefilter, used where the centre pixel would need more than 64 patches an axis).\n\n";
     const nlohmann::json& any = *byIncidence.begin()->second.front();
+    auto flagsOf = [](const nlohmann::json& r) {
+        std::string flags;
+        for (const auto& fl : r["flags"]) flags += (flags.empty() ? "" : ", ") + fl.get<std::string>();
+        return flags;
+    };
+    bool checked = false;
     for (const auto& [inc, list] : byIncidence) {
-        md << "### theta_i = " << inc << " deg\n\n| bump period (px) | patches/axis | aspect | analytic | semi-major "
-           << "(deg) | analytic | semi-minor (deg) | analytic | flags |\n|---|---|---|---|---|---|---|---|---|\n";
+        md << "### theta_i = " << inc << " deg\n\n| bump period (px) | filter | patches/axis needed | aspect | analytic | "
+           << "semi-major (deg) | analytic | semi-minor (deg) | analytic | flags |\n|---|---|---|---|---|---|---|---|---|---|\n";
         const nlohmann::json* smallest = nullptr;
         for (const nlohmann::json* r : list) {
-            std::string flags;
-            for (const auto& fl : (*r)["flags"]) flags += (flags.empty() ? "" : ", ") + fl.get<std::string>();
-            md << "| " << num(*r, "bump_period_px") << " | " << num(*r, "bump_samples_center") << " | "
-               << num(*r, "aspect") << " | " << num(*r, "analytic_aspect") << " | " << num(*r, "major_deg") << " | "
-               << num(*r, "analytic_major_deg") << " | " << num(*r, "minor_deg") << " | "
-               << num(*r, "analytic_minor_deg") << " | " << flags << " |\n";
+            md << "| " << num(*r, "bump_period_px") << " | " << r->value("bump_filter_used", std::string()) << " | "
+               << num(*r, "bump_samples_center") << " | " << num(*r, "aspect") << " | " << num(*r, "analytic_aspect")
+               << " | " << num(*r, "major_deg") << " | " << num(*r, "analytic_major_deg") << " | " << num(*r, "minor_deg")
+               << " | " << num(*r, "analytic_minor_deg") << " | " << flagsOf(*r) << " |\n";
             if (!smallest || num(*r, "bump_period_px") < num(*smallest, "bump_period_px")) smallest = r;
+            checked = checked || std::isfinite(num(*r, "prefilter_error"));
         }
         const double da = num(*smallest, "aspect_minus_analytic"), ma = num(*smallest, "major_over_analytic") - 1,
                      mi = num(*smallest, "minor_over_analytic") - 1;
         const bool ok = std::abs(da) <= 0.02 && std::abs(ma) <= 0.05 && std::abs(mi) <= 0.05;
-        md << "\nSmallest period (" << num(*smallest, "bump_period_px") << " px): aspect differs from the analytic "
+        md << "\nSmallest period (" << num(*smallest, "bump_period_px") << " px, "
+           << smallest->value("bump_filter_used", std::string()) << "): aspect differs from the analytic "
            << "BRDF's by " << std::showpos << da << ", semi-major by " << 100 * ma << "%, semi-minor by " << 100 * mi
            << "%" << std::noshowpos << " (" << (ok ? "within" : "outside") << " 0.02 and 5%).\n\n";
+    }
+    if (checked) {
+        md << "### The moments prefilter against supersampling\n\nWhere supersampling runs, the same frame was "
+              "also rendered with the moments prefilter and, supersampled, with the next seed. Block errors: rms over "
+              "8x8-pixel blocks of the highlight (where supersampling resolves the bumps) of the difference of block "
+              "means, relative to their mean; `noise` is the seed-to-seed difference / sqrt(2), `prefilter error` = "
+              "sqrt(block error^2 - noise^2). Shapes are over the analytic BRDF's.\n\n| theta_i | bump period (px) | "
+              "block error | noise | prefilter error | blocks (left out) | prefilter aspect - analytic | major | minor "
+              "| next seed aspect - analytic | major | minor |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        for (const auto& [inc, list] : byIncidence)
+            for (const nlohmann::json* r : list) {
+                if (!std::isfinite(num(*r, "prefilter_error"))) continue;
+                md << "| " << inc << " | " << num(*r, "bump_period_px") << " | " << num(*r, "prefilter_block_error")
+                   << " | " << num(*r, "supersample_block_noise") << " | " << num(*r, "prefilter_error") << " | "
+                   << num(*r, "prefilter_blocks") << " (" << num(*r, "prefilter_unresolved_blocks") << ") | "
+                   << num(*r, "prefilter_aspect_minus_analytic") << " | " << num(*r, "prefilter_major_over_analytic")
+                   << " | " << num(*r, "prefilter_minor_over_analytic") << " | "
+                   << num(*r, "next_seed_aspect_minus_analytic") << " | " << num(*r, "next_seed_major_over_analytic")
+                   << " | " << num(*r, "next_seed_minor_over_analytic") << " |\n";
+            }
+        md << "\n";
     }
     // The realised slopes of the field, against the target NDF.
     micro::BumpSpec spec;
@@ -87,7 +145,7 @@ std::string microSummary(const std::vector<nlohmann::json>& rows) {
     md << "### The realised slopes\n\n" << spec << ": " << cachedStats(spec)
        << " (Beckmann target: rms roughness/sqrt(2) = " << spec.roughness / std::sqrt(2.0)
        << " per axis, shares 0.125; KS is the largest gap between the realised and target radial CDFs over "
-       << 1024 * 1024 << " texels).\n\n";
+       << 4 * 1024 * 1024 << " points of the rendered, bilinear field).\n\n";
     // Masking and shadowing traced against a Beckmann height field of the same seed.
     md << "### Shadowing and masking from geometry\n\nRays traced against the height field (CPU, quarter-texel "
           "steps), 40000 random facets per angle, +- one standard error. G1 is the masking of all facets; since every "

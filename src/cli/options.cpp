@@ -1,6 +1,7 @@
 #include "cli/options.hpp"
 
 #include "brdf/materials.hpp"
+#include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "core/error.hpp"
 #include "render/bumps.hpp"
@@ -83,10 +84,14 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
     std::string materials;
     for (const auto& m : brdf::materialNames()) materials += (materials.empty() ? "" : ", ") + m;
     app.add_option("--model", f.model,
-                   "specular model: phong | phong-classic (reflection lobes) | blinn | gaussian | beckmann | ggx "
-                   "(microfacet) | none (diffuse only)")
+                   "specular model: phong | phong-classic (reflection lobes) | retro (retroreflective lobe about the "
+                   "light) | blinn | gaussian | beckmann | ggx | tabulated (microfacet; tabulated: --ndf-table) | "
+                   "none (diffuse only)")
         ->capture_default_str();
-    app.add_option("--exponent", f.exponent, "phong/phong-classic/blinn exponent n, in [0, 1e8]")
+    app.add_option("--ndf-table", f.ndfTable,
+                   "tabulated: CSV of 'theta_h_deg, D' rows (theta_h from 0, increasing, <= 90; D >= 0), linear "
+                   "between rows, normalized so that int D (n.h) dw = 1 (the factor is reported)");
+    app.add_option("--exponent", f.exponent, "phong/phong-classic/blinn/retro exponent n, in [0, 1e8]")
         ->capture_default_str();
     app.add_option("--roughness", f.roughness,
                    "beckmann m / ggx alpha / gaussian m in radians (the formulas' symbols; alpha_x if anisotropic), "
@@ -169,6 +174,11 @@ brdf::Params brdfParams(const SceneFlags& f) {
         p.roughnessY = roughnessFlag("--roughness-y", parseNumber("--roughness-y", f.roughnessY), true);
     }
     p.tangentAngleDeg = checkRange("--tangent-angle", f.tangentAngle, -360, 360);
+    if (p.model == brdf::Model::Tabulated && f.ndfTable.empty())
+        throw InputError("--model tabulated: needs --ndf-table FILE (rows 'theta_h_deg, D')");
+    if (!f.ndfTable.empty() && p.model != brdf::Model::Tabulated)
+        throw InputError("--ndf-table: the table is the NDF of --model tabulated (got --model " + f.model + ")");
+    if (!f.ndfTable.empty()) p.ndfTable = brdf::loadNdfTable(f.ndfTable);
     p.geometry = choice("--geometry", f.geometry, brdf::parseGeometry, brdf::geometryNames());
     p.diffuse = choice("--diffuse", f.diffuse, brdf::parseDiffuse, brdf::diffuseNames());
     p.albedo = rgbFlag("--albedo", f.albedo, 0.0, 1.0);
@@ -239,6 +249,9 @@ render::Scene sceneOf(const SceneFlags& f) {
         render::bumpSpec(s);  // the material must have a slope distribution (InputError naming --bumps)
         if (s.brdf.diffuse != brdf::Diffuse::None)
             throw InputError("--bumps: the bump render is specular only (drop --diffuse)");
+        if (s.surface.filter == render::BumpFilter::Moments && s.brdf.model != brdf::Model::Beckmann)
+            throw InputError("--bump-filter moments: the prefilter's Gaussian is the slope distribution of beckmann "
+                             "bumps only (ggx bumps are a remapped normal map; use supersample or auto)");
     }
     return s;
 }

@@ -30,6 +30,7 @@ struct SceneFlags {
     std::string diffuse = "none";
     std::string albedo = "0.5";
     double sigma = 20.0;             ///< Oren-Nayar, degrees
+    std::string ndfTable;            ///< --model tabulated: the CSV of D against theta_h (issue 10)
     int spectralStepNm = 5;          ///< spectral Fresnel: 5 nm (81 GPU uniforms) for renders, 1 nm (full tables) for `brdf`
     std::string incidence = "45";  ///< render: one angle; measure: one, a list or a range
     double azimuth = 0.0;

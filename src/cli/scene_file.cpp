@@ -93,6 +93,9 @@ void addKey(const std::string& name, const std::string& section, const std::stri
     SceneArg arg{"--" + opt->get_lnames().front(), "", where(name, node) + ": " + full};
     if (!valueText(node, arg.value))
         throw InputError(arg.origin + ": expected a number, string, boolean or flat array");
+    // A data file named by a scene or experiment file is found beside that file (issue 10: ndf_table).
+    if (key == "ndf_table" && !arg.value.empty() && arg.value.front() != '/' && name.find('/') != std::string::npos)
+        arg.value = name.substr(0, name.rfind('/') + 1) + arg.value;
     if (opt->get_expected_max() == 0) {  // a switch (--json): only true/false make sense
         if (!node.is_boolean()) throw InputError(arg.origin + ": expected true or false");
         if (arg.value == "false") return;
@@ -194,7 +197,7 @@ void assignSections(CLI::App& app, size_t firstOption) {
         {"tolerance", "Measurement"}};
     static const std::map<std::string, std::string> surface = {
         {"bumps", "Surface"}, {"bump-period-px", "Surface"}, {"bump-seed", "Surface"}, {"bump-samples", "Surface"},
-        {"sun", "Surface"}};
+        {"sun", "Surface"}, {"bump-filter", "Surface"}, {"prefilter-check", "Surface"}};
     static const std::map<std::string, std::string> output = {
         {"output", "Output"}, {"float", "Output"}, {"exposure", "Output"}, {"json", "Output"}};
     const auto opts = app.get_options();

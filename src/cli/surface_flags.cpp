@@ -19,6 +19,14 @@ void addSurfaceFlags(CLI::App& app, SurfaceFlags& f) {
         ->capture_default_str();
     app.add_option("--sun", f.sun, "the light's angular standard deviation per axis (Gaussian sun), degrees, [0.01, 5]")
         ->capture_default_str();
+    app.add_option("--bump-filter", f.bumpFilter,
+                   "how a pixel integrates its bumps: supersample (Gaussian mirror patches) | moments (the footprint's "
+                   "realised slope moments, LEAN mapping: a prefilter; beckmann bumps) | auto (supersample while the "
+                   "centre pixel needs <= 64 patches per axis, moments beyond; ggx bumps: always supersample)")
+        ->capture_default_str();
+    app.add_flag("--prefilter-check", f.prefilterCheck,
+                 "measure also renders the same frame with the moments prefilter and with the next seed, and reports "
+                 "the prefilter's error against supersampling (prefilter_* fields)");
 }
 
 render::Surface surfaceOf(const SurfaceFlags& f) {
@@ -30,6 +38,11 @@ render::Surface surfaceOf(const SurfaceFlags& f) {
     s.seed = uint64_t(checkRange("--bump-seed", double(f.bumpSeed), 0, 9007199254740992.0));
     s.samples = int(checkRange("--bump-samples", f.bumpSamples, 0, render::kMaxBumpSamples));
     s.sunDeg = checkRange("--sun", f.sun, render::kMinSunDeg, render::kMaxSunDeg);
+    if (f.bumpFilter == "auto") s.filter = render::BumpFilter::Auto;
+    else if (f.bumpFilter == "supersample") s.filter = render::BumpFilter::Supersample;
+    else if (f.bumpFilter == "moments") s.filter = render::BumpFilter::Moments;
+    else throw InputError("--bump-filter: unknown '" + f.bumpFilter + "' (allowed: auto, supersample, moments)");
+    s.prefilterCheck = f.prefilterCheck;
     return s;
 }
 

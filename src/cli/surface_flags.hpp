@@ -15,6 +15,8 @@ struct SurfaceFlags {
     long long bumpSeed = 1;
     int bumpSamples = 0;
     double sun = 0.1;
+    std::string bumpFilter = "auto";  ///< auto | supersample | moments
+    bool prefilterCheck = false;
 };
 
 void addSurfaceFlags(CLI::App& app, SurfaceFlags& f);

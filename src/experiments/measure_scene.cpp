@@ -7,6 +7,7 @@
 #include "experiments/diagnose.hpp"
 #include "measure/supersample.hpp"
 #include "render/cpu_view.hpp"
+#include "experiments/peak_frame.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -256,6 +257,8 @@ std::ostream& operator<<(std::ostream& os, const MeasureSetup& s) {
 }
 
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup) {
+    // A peak far from the mirror direction (retroreflection): framed and measured about the peak.
+    if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureGl(renderer, *framed, setup);
     return measureWith(
         [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img) {
             renderer.render(scene, cam, render::Output::Measure, img, jitter, crop);
@@ -264,6 +267,7 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
 }
 
 Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup) {
+    if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureCpu(*framed, setup);
     return measureWith(
         [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img) {
             render::renderMeasureCpu(scene, cam, img, jitter, crop, setup.threads);
@@ -278,6 +282,7 @@ Measurement measure(render::Renderer* renderer, const render::Scene& scene, cons
 }
 
 Measurement measureReference(const render::Scene& scene, const measure::Options& options) {
+    if (const auto framed = frameAboutPeak(scene, options.threshold)) return measureReference(*framed, options);
     Measurement m;
     const auto t0 = Clock::now();
     const double r = twinHalfWidth(scene, options.threshold);

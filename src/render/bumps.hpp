@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace hilite::render {
 
@@ -29,11 +30,13 @@ public:
     ~BumpTextures();
     BumpTextures(const BumpTextures&) = delete;
     BumpTextures& operator=(const BumpTextures&) = delete;
-    /// Binds the field's textures to units 1 and 2 and sets the program's bump uniforms.
+    /// Binds the field's textures to units 1, 2 and 5 (its moment pyramid to 3 and 4 when this render uses the
+    /// moments prefilter) and sets the program's bump uniforms.
     void bind(const gl::Program& prog, const Scene& scene, const PinholeCamera& camera);
 
 private:
-    std::map<micro::BumpSpec, std::pair<unsigned, unsigned>> m_textures;
+    std::map<micro::BumpSpec, std::vector<unsigned>> m_textures;  ///< the fields' three textures
+    std::map<micro::BumpSpec, std::vector<unsigned>> m_moments;   ///< the slope-moment pyramids, when used
 };
 
 /// The twin of the shader: the radiance of pixel (ix, iy) (all its sub-pixel patches), double precision.

@@ -1,6 +1,7 @@
 #include "render/renderer.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "brdf/ndf_table.hpp"
 #include "render/bumps.hpp"
 #include "gl/check.hpp"
 
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <ostream>
 #include <stdexcept>
+#include <sstream>
 
 namespace hilite::render {
 
@@ -37,6 +39,13 @@ std::vector<std::string> activeEffects(const Scene& scene) {
     out.push_back(scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
                                                        : "directional light (E cos)");
     if (scene.surface.bumps) out.push_back(bumpEffect(scene));
+    if (scene.brdf.model == brdf::Model::Tabulated && scene.brdf.ndfTable) {  // issue 10: what the table became
+        const brdf::NdfTable& t = *scene.brdf.ndfTable;
+        std::ostringstream s;
+        s << "tabulated NDF " << t.file << ": " << t.theta.size() << " rows, normalized by x" << t.normalization
+          << " (int D (n.h) dw = 1), half maximum at theta_h = " << rad2deg(t.halfWidth) << " deg";
+        out.push_back(s.str());
+    }
     return out;
 }
 

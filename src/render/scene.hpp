@@ -7,6 +7,7 @@
 #include "render/surface.hpp"
 
 #include <iosfwd>
+#include <optional>
 
 namespace hilite::render {
 
@@ -26,9 +27,18 @@ struct Light {
     double irradiance = 1.0;  ///< directional E
     double intensity = 1.0;   ///< point I
     double distance = 10.0;   ///< point: distance from the origin
+    /// The measurement chart's centre when it is not the mirror direction (a highlight framed about a peak far
+    /// from it, e.g. retroreflection: experiments/peak_frame.hpp). Unset: the mirror direction.
+    std::optional<dvec3> chartCenter;
     dvec3 direction() const { return sphericalDirectionDeg(incidenceDeg, azimuthDeg); }
     dvec3 position() const { return distance * direction(); }
-    MirrorChart chart() const { return MirrorChart::fromDegrees(incidenceDeg, azimuthDeg); }
+    /// The chart about the mirror direction, or about chartCenter (the mirror chart of a light whose mirror
+    /// direction is that centre: +u still points toward the normal).
+    MirrorChart chart() const {
+        if (!chartCenter) return MirrorChart::fromDegrees(incidenceDeg, azimuthDeg);
+        const dvec3& c = *chartCenter;
+        return MirrorChart(std::atan2(std::hypot(c.x, c.y), c.z), std::atan2(c.y, c.x) + kPi);
+    }
 };
 
 struct Scene {

@@ -1,6 +1,7 @@
 #include "render/shader_source.hpp"
 
 #include "brdf/ndf.hpp"
+#include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "core/error.hpp"
 
@@ -125,6 +126,7 @@ std::string distributionBlock(const brdf::Params& p) {
         case Model::Beckmann: return "D_Beckmann";
         case Model::GGX: return "D_GGX";
         case Model::Gaussian: return "D_Gaussian";
+        case Model::Tabulated: return "D_Tabulated";
         default: return "";
     }
 }
@@ -132,6 +134,7 @@ std::string distributionBlock(const brdf::Params& p) {
 /// Blinn-Phong and the Gaussian have no exact Smith Lambda: both use Beckmann's (see brdf/evaluate.cpp).
 std::string lambdaBlock(const brdf::Params& p) {
     if (anisotropic(p)) return p.model == Model::GGX ? "Lambda_GGXAniso" : "Lambda_BeckmannAniso";
+    if (p.model == Model::Tabulated) return "Lambda_Tabulated";
     return p.model == Model::GGX ? "Lambda_GGX" : "Lambda_Beckmann";
 }
 
@@ -168,6 +171,7 @@ std::string distributionCall(const brdf::Params& p) {
         case Model::Beckmann: return "D_Beckmann(hv.NoH, hv.sin2h, uRoughness)";
         case Model::GGX: return "D_GGX(hv.NoH, hv.sin2h, uRoughness)";
         case Model::Gaussian: return "D_Gaussian(hv.NoH, hv.sin2h, uRoughness, uGaussianNorm)";
+        case Model::Tabulated: return "D_Tabulated(hv.NoH, hv.sin2h)";
         default: return "0.0";
     }
 }
@@ -180,6 +184,7 @@ std::string lambdaCall(const brdf::Params& p) {
         case Model::Gaussian: return "Lambda_Beckmann(w.z, uRoughness)";
         // Blinn-Phong: Beckmann's Lambda with m = sqrt(2 / (n + 2)) (Walter 2007).
         case Model::Blinn: return "Lambda_Beckmann(w.z, sqrt(2.0 / (uExponent + 2.0)))";
+        case Model::Tabulated: return "Lambda_Tabulated(w.z)";
         default: return "0.0";
     }
 }
@@ -254,6 +259,7 @@ std::vector<std::string> termBlocks(const brdf::Params& p) {
     std::vector<std::string> out;
     if (p.model == Model::Phong) out.push_back("Phong_Normalized");
     if (p.model == Model::PhongClassic) out.push_back("Phong_Classic");
+    if (p.model == Model::Retro) out.push_back("Retro_Normalized");
     if (brdf::isMicrofacet(p.model)) {
         out.push_back("HalfVector");
         out.push_back(distributionBlock(p));
@@ -277,6 +283,11 @@ std::string dispatchSource(const brdf::Params& p) {
              "    vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2\n"
              "    return vec3("
           << (p.model == Model::Phong ? "Phong_Normalized" : "Phong_Classic") << "(0.5 * dot(d, d), uExponent));\n}\n";
+    } else if (p.model == Model::Retro) {
+        s << "uniform float uExponent;\n"
+             "vec3 specular(vec3 wi, vec3 wo) {\n"
+             "    vec3 d = wo - wi;  // 1 - cos(beta) = |d|^2 / 2\n"
+             "    return vec3(Retro_Normalized(0.5 * dot(d, d), uExponent));\n}\n";
     } else if (specular) {
         microfacetDispatch(s, p);
     }
@@ -317,6 +328,14 @@ std::vector<TermUniform> termUniforms(const brdf::Params& p) {
         u.push_back(etaK);
         u.push_back(weight);
     }
+    if (p.ndfTable) {  // issue 10: the tabulated NDF's rows and its Smith projected areas
+        TermUniform rows{"uNdfTable", 2, {}}, area{"uNdfProjectedArea", 1, {}};
+        for (size_t k = 0; k < p.ndfTable->theta.size(); ++k)
+            rows.values.insert(rows.values.end(), {float(p.ndfTable->theta[k]), float(p.ndfTable->D[k])});
+        for (double a : p.ndfTable->projectedArea) area.values.push_back(float(a));
+        u.push_back(rows);
+        u.push_back(area);
+    }
     u.push_back({"uAlbedo", 3, rgb(p.albedo)});
     u.push_back({"uSigma", 1, {float(deg2rad(p.sigmaDeg))}});
     return u;
@@ -334,12 +353,19 @@ size_t spectralSamples(const brdf::Params& p) {
     return p.spectrum->size();
 }
 
+/// The rows of a tabulated NDF on the GPU (0 without one): the size of its uniform array.
+size_t ndfTableRows(const brdf::Params& p) {
+    if (p.model != Model::Tabulated) return 0;
+    if (!p.ndfTable) throw InputError("--model tabulated: needs --ndf-table FILE");
+    return p.ndfTable->theta.size();
+}
+
 }  // namespace
 
 std::string effectKey(const brdf::Params& p, Output out) {
     // The dispatch names every term and call (never a parameter value), so it identifies the program.
     return std::string(out == Output::Measure ? "measure" : "color") + "|" + std::to_string(spectralSamples(p)) + "|" +
-           dispatchSource(p);
+           std::to_string(ndfTableRows(p)) + "|" + dispatchSource(p);
 }
 
 ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
@@ -366,6 +392,7 @@ ProgramSources assemble(const brdf::Params& p, Output out, const std::string& di
     std::string config = "#version 450 core\n";
     config += out == Output::Measure ? "#define HILITE_OUTPUT_MEASURE 1\n" : "#define HILITE_OUTPUT_COLOR 1\n";
     if (const size_t n = spectralSamples(p)) config += "#define HILITE_SPECTRAL_SAMPLES " + std::to_string(n) + "\n";
+    if (const size_t n = ndfTableRows(p)) config += "#define HILITE_NDF_TABLE_ROWS " + std::to_string(n) + "\n";
     src.fragment.push_back({"<generated config>", 1, config});
     for (const ShaderBlock* b : ordered) src.fragment.push_back({b->file, b->firstLine, b->text});
     src.fragment.push_back({"<generated dispatch>", 1, dispatchSource(p)});

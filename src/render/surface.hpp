@@ -9,6 +9,15 @@
 
 namespace hilite::render {
 
+/// How a pixel integrates the bumps it covers.
+enum class BumpFilter {
+    Auto,         ///< supersample while the centre pixel needs at most kMaxBumpSamples patches per axis, else moments
+    Supersample,  ///< S x S Gaussian mirror patches per pixel (exact as the patches shrink)
+    Moments,      ///< the footprint's realised slope moments (LEAN mapping): a prefilter, its error measured
+};
+const char* toString(BumpFilter);
+std::ostream& operator<<(std::ostream&, BumpFilter);
+
 struct Surface {
     bool bumps = false;           ///< the material's NDF as explicit geometry instead of the analytic BRDF
     double bumpPeriodPx = 4.0;    ///< bump period in pixels of the view, at the image centre, across the view
@@ -18,6 +27,8 @@ struct Surface {
     double sunDeg = 0.1;          ///< the sun's angular standard deviation per axis, degrees (Gaussian profile)
     int texels = 1024;            ///< tile resolution
     int bumpsPerTile = 64;        ///< bump periods across the periodic tile
+    BumpFilter filter = BumpFilter::Auto;
+    bool prefilterCheck = false;  ///< measurements also render the moments prefilter and a second seed (its error)
 };
 std::ostream& operator<<(std::ostream&, const Surface&);
 

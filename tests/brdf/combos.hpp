@@ -17,7 +17,8 @@ inline std::vector<ModelCase> allModels() {
     using brdf::Model;
     return {{Model::Phong, false},    {Model::PhongClassic, false}, {Model::Blinn, false},
             {Model::Gaussian, false}, {Model::Beckmann, false},     {Model::GGX, false},
-            {Model::Beckmann, true},  {Model::GGX, true},           {Model::None, false}};
+            {Model::Beckmann, true},  {Model::GGX, true},           {Model::None, false},
+            {Model::Retro, false}};
 }
 
 /// Every model x geometry x Fresnel x diffuse, with parameters that give lobes of moderate width.

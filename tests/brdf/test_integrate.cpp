@@ -86,6 +86,19 @@ TEST_CASE("brdf::albedo normalized Phong reflects all at normal incidence") {
     }
 }
 
+TEST_CASE("brdf::albedo the retroreflective lobe reflects all at normal incidence, less where the horizon cuts it") {
+    for (double n : {1.0, 10.0, 100.0, 1e3, 1e4}) {
+        CAPTURE(n);
+        const brdf::Params p = specular(Model::Retro, Geometry::Implicit, n);
+        CHECK(brdf::albedo(p, 0.0).x == doctest::Approx(1.0).epsilon(1e-6));
+        // About wi at 60 deg the lobe is cut by the horizon and weighted by cos(theta_o) < cos of its axis...
+        CHECK(brdf::albedo(p, 60.0).x < 1.0);
+        // ... and equals the Phong lobe's there (both are the same lobe about an axis at 30 deg elevation).
+        CHECK(brdf::albedo(p, 60.0).x ==
+              doctest::Approx(brdf::albedo(specular(Model::Phong, Geometry::Implicit, n), 60.0).x).epsilon(1e-9));
+    }
+}
+
 TEST_CASE("brdf::albedo <= 1 + 1e-3 for every energy-conserving combination") {
     auto check = [&](const brdf::Params& p) {
         double at = 0.0;

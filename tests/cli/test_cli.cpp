@@ -153,3 +153,53 @@ TEST_CASE("cli::measure roughness policy: 0 is a mirror, (0, 1e-7) is raised wit
         CHECK(r.out.find("warning") == std::string::npos);
     }
 }
+
+TEST_CASE("cli::measure says what a highlight is framed about (issue 10: retroreflection)") {
+    const auto r = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64 --json", true);
+    CHECK(r.code == 0);
+    CHECK(r.out.find("\"framed_about\":\"peak (retroreflection: toward the light, 2 theta_i = 120 deg") !=
+          std::string::npos);
+    CHECK((r.out.find("\"peak_offset_deg\":120") != std::string::npos || r.out.find("\"peak_offset_deg\":119.9999") != std::string::npos));
+    const auto t = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64", true);
+    CHECK(t.out.find("about the peak, 120 deg from the mirror direction") != std::string::npos);
+    const auto g = hilite("measure --model ggx --incidence 60 --size 64 --json", true);
+    CHECK(g.out.find("\"framed_about\":\"mirror direction\"") != std::string::npos);
+}
+
+TEST_CASE("cli tabulated NDF: bad tables are one-line errors naming file:line, exit 2, nothing written") {
+    const std::string table = tmpPath("ndf.csv"), out = tmpPath("ndf.png");
+    struct Case { const char* text; const char* line; };
+    for (const Case c : {Case{"0, 1\n10, 0.5\n5, 0.2\n", ":3: "}, Case{"0, 1\n10, -0.5\n", ":2: "},
+                         Case{"0, 1\n10, nan\n", ":2: "}, Case{"0, 1\n", ":1: "}}) {
+        std::ofstream(table) << c.text;
+        CAPTURE(c.text);
+        for (const std::string& cmd : {"render --model tabulated --ndf-table " + table + " -o " + out,
+                                       "measure --model tabulated --ndf-table " + table}) {
+            const auto r = hilite(cmd);
+            CHECK(r.code == 2);
+            CHECK(lines(r.out) == 1);
+            CHECK(r.out.find(table + c.line) != std::string::npos);
+            CHECK_FALSE(std::filesystem::exists(out));
+        }
+    }
+    const auto missing = hilite("measure --model tabulated --ndf-table /nonexistent/ndf.csv");
+    CHECK(missing.code == 2);
+    CHECK(lines(missing.out) == 1);
+    CHECK(missing.out.find("/nonexistent/ndf.csv") != std::string::npos);
+    CHECK(hilite("measure --model tabulated").code == 2);                                  // no table
+    CHECK(hilite("measure --model ggx --ndf-table " + table).code == 2);                   // a table for another model
+    std::ofstream(table) << "theta_h_deg, D\n0, 4\n2, 3\n5, 1\n10, 0\n";
+    const auto ok = hilite("measure --model tabulated --ndf-table " + table + " --incidence 30 --size 64 --json", true);
+    CHECK(ok.code == 0);
+    CHECK(ok.out.find("\"ndf_table_normalization\":") != std::string::npos);
+    const auto ex = hilite("explain --model tabulated --ndf-table " + table + " --part effects", true);
+    CHECK(ex.out.find("normalized by x") != std::string::npos);
+    std::filesystem::remove(table);
+}
+
+TEST_CASE("cli --bump-filter moments refuses ggx bumps (their slopes are not Gaussian)") {
+    const auto r = hilite("measure --model ggx --bumps explicit --bump-filter moments --size 32");
+    CHECK(r.code == 2);
+    CHECK(lines(r.out) == 1);
+    CHECK(r.out.find("--bump-filter moments") != std::string::npos);
+}

@@ -2,6 +2,7 @@
 // relative: every new NDF, Fresnel, geometry and diffuse term and the classic Phong lobe, each in a
 // program assembled with only the blocks it runs.
 
+#include "brdf/ndf_tables.hpp"
 #include "brdf/spectral.hpp"
 #include "gl_fixture.hpp"
 #include "render/shader_source.hpp"
@@ -51,6 +52,13 @@ brdf::Params withFresnel(brdf::Params p, Fresnel f, const dvec3& eta, const dvec
     return p;
 }
 
+brdf::Params tabulated(Geometry g) {
+    brdf::Params p = base(Model::Tabulated, g);
+    static const auto table = brdf::parseNdfTable(test::ggxTableText(0.2), "ggx.csv");
+    p.ndfTable = table;
+    return p;
+}
+
 brdf::Params withDiffuse(brdf::Params p, Diffuse d) {
     p.diffuse = d;
     p.albedo = {0.8, 0.5, 0.2};
@@ -86,12 +94,16 @@ std::vector<TermCase> termCases() {
         {"Fd_Lambert + D_GGX", withDiffuse(base(Model::GGX, Geometry::Smith), Diffuse::Lambert)},
         {"Fd_OrenNayar", withDiffuse(base(Model::None), Diffuse::OrenNayar)},
         {"Fd_OrenNayar + Phong_Normalized", withDiffuse(base(Model::Phong), Diffuse::OrenNayar)},
+        {"Retro_Normalized", base(Model::Retro)},  // issue 10 (its framing: tests/gl/test_retro.cpp)
+        {"D_Tabulated", tabulated(Geometry::Implicit)},  // issue 10: a GGX table (tests/gl/test_ndf_table.cpp)
+        {"D_Tabulated + Lambda_Tabulated + F_Schlick",
+         withFresnel(tabulated(Geometry::Smith), Fresnel::Schlick, dvec3(1.5))},
     };
 }
 
 PinholeCamera measureCamera(const render::Scene& s, double fov, int w, int h) {
     const MirrorChart chart = s.light.chart();
-    dvec3 c = chart.wr();
+    dvec3 c = s.brdf.model == Model::Retro ? s.light.direction() : chart.wr();  // the lobe's axis
     if (c.z < 1e-3) c = glm::normalize(dvec3(c.x, c.y, 1e-3));
     return PinholeCamera::measurement(chart, c, fov, w, h);
 }
@@ -131,7 +143,7 @@ TEST_CASE("render::assemble a program holds exactly the terms it runs") {
         "D_Gaussian(",           "D_BeckmannAniso(",    "D_GGXAniso(",        "F_Schlick(",       "F_Dielectric(",
         "F_Conductor(",          "F_Spectral(",         "Lambda_GGX(",        "Lambda_Beckmann(", "Lambda_GGXAniso(",
         "Lambda_BeckmannAniso(", "G2_SmithCorrelated(", "G2_SmithSeparable(", "G_CookTorrance(",  "Fd_Lambert(",
-        "Fd_OrenNayar("};
+        "Fd_OrenNayar(",         "Retro_Normalized(",   "D_Tabulated(",       "Lambda_Tabulated("};
     for (const TermCase& t : termCases()) {
         const std::string text = fragment(t.p);
         const auto blocks = render::termBlocks(t.p);

@@ -1,0 +1,36 @@
+// The tabulated NDF in GL (issue 10): a table sampled from GGX measures like GGX.
+
+#include "brdf/ndf_tables.hpp"
+#include "experiments/measure_scene.hpp"
+
+#include "gl/gl_fixture.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace hilite;
+
+TEST_CASE("experiments::measureGl a table sampled from GGX measures like GGX") {
+    experiments::MeasureSetup setup;
+    setup.width = setup.height = 128;
+    auto& renderer = *test::glEnv().renderer;
+    for (double alpha : {0.1, 0.3}) {
+        render::Scene ggx;
+        ggx.brdf.model = brdf::Model::GGX;
+        ggx.brdf.roughness = alpha;
+        render::Scene tab = ggx;
+        tab.brdf.model = brdf::Model::Tabulated;
+        tab.brdf.ndfTable = brdf::parseNdfTable(test::ggxTableText(alpha), "ggx.csv");
+        for (double inc : {0.0, 30.0, 60.0, 75.0}) {
+            ggx.light.incidenceDeg = tab.light.incidenceDeg = inc;
+            const auto a = experiments::measureGl(renderer, ggx, setup), b = experiments::measureGl(renderer, tab, setup);
+            CAPTURE(alpha);
+            CAPTURE(inc);
+            CHECK(std::abs(a.shape.aspect - b.shape.aspect) < 0.005);
+            CHECK(b.shape.major_deg == doctest::Approx(a.shape.major_deg).epsilon(0.005));
+            CHECK(b.shape.minor_deg == doctest::Approx(a.shape.minor_deg).epsilon(0.005));
+            CHECK(b.shape.flags == a.shape.flags);
+        }
+    }
+}
