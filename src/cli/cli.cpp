@@ -29,6 +29,7 @@ int run(int argc, char** argv) {
     add("explain", "print the resolved scene, its active effects and the GLSL it compiles", &addExplain);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
+    add("probe-shader", "", &addProbeShader);  // hidden: the child process of cli/shader_probe.cpp
     std::map<std::string, std::string> origins;
     try {
         std::vector<std::string> args(argv + 1, argv + argc);

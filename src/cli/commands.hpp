@@ -15,5 +15,6 @@ Action addBrdf(CLI::App& app);
 Action addRun(CLI::App& app);
 Action addMerge(CLI::App& app);
 Action addExplain(CLI::App& app);
+Action addProbeShader(CLI::App& app);  ///< cli/shader_probe.cpp
 
 }  // namespace hilite::cli

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -123,6 +124,7 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file, const CLI::Ap
     }
     if (out.empty()) throw InputError(line(file, t) + ": sweep " + axis.key + ": no values");
     for (const auto& a : out) axis.values.push_back(a.value);
+    axis.args = out;
     args.push_back(out);
     return axis;
 }
@@ -286,22 +288,13 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
 }
 
 std::vector<Configuration> Experiment::configurations() const {
-    Schema schema;
+    // Each axis' flag arguments as parsed (validated, relative .brdf paths already resolved once).
     std::vector<std::vector<SceneArg>> axisArgs;
-    // Re-derive each axis' flag arguments (validated) from its values; a case axis has them already.
+    // Each axis' flag arguments (validated when the file was read, with their file:line); a case axis has
+    // its own per case.
     for (const auto& a : axes) {
-        std::vector<SceneArg> out;
-        if (!a.cases.empty()) {
-            out.resize(a.cases.size());  // placeholders: the case's own arguments are used below
-            axisArgs.push_back(out);
-            continue;
-        }
-        for (const auto& v : a.values) {
-            toml::value<std::string> node(v);
-            SceneArg arg = sceneArg(path, a.key, node, schema.app);
-            out.push_back(arg);
-        }
-        axisArgs.push_back(out);
+        if (!a.cases.empty()) axisArgs.push_back(std::vector<SceneArg>(a.cases.size()));  // placeholders: see below
+        else axisArgs.push_back(a.args);
     }
     double total = 1;
     for (const auto& a : axisArgs) total *= double(a.size());
@@ -358,6 +351,17 @@ std::vector<Configuration> Experiment::configurations() const {
 
 void writeExperimentCopy(const Experiment& e, const std::string& dir) {
     io::writeFileAtomic(dir + "/experiment.toml", e.text);
+    std::error_code ec;
+    const auto origin = std::filesystem::absolute(e.path, ec);
+    io::writeFileAtomic(dir + "/experiment.origin", (ec ? e.path : origin.lexically_normal().string()) + "\n");
+}
+
+Experiment loadExperimentCopy(const std::string& dir) {
+    const std::string copy = dir + "/experiment.toml";
+    std::ifstream in(dir + "/experiment.origin");
+    std::string origin;
+    if (!std::getline(in, origin) || origin.empty()) return loadExperiment(copy);
+    return parseExperiment(readText(copy), origin);
 }
 
 }  // namespace hilite::cli

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@ struct SweepCase {
 struct SweepAxis {
     std::string key;                  ///< "light.incidence"; for a case axis the column of the case names
     std::vector<std::string> values;  ///< as flag values; for a case axis the case names
+    std::vector<SceneArg> args;       ///< one flag argument per value, with its origin (file:line)
     std::vector<int> lines;
     std::vector<SweepCase> cases;     ///< non-empty: a case axis (`cases = [...]` instead of values/range)
 };
@@ -71,7 +73,11 @@ Experiment loadExperiment(const std::string& path);
 Experiment parseExperiment(const std::string& text, const std::string& name);
 /// A sweep larger than this is refused: its rows would not fit a results file anyone reads.
 constexpr size_t kMaxConfigurations = 1000000;
+/// Writes dir/experiment.toml (the text, verbatim) and dir/experiment.origin (the original file's absolute
+/// path, against which merge resolves the relative .brdf paths of the copy).
 void writeExperimentCopy(const Experiment& e, const std::string& dir);
+/// The experiment a run's output folder holds (its copy, read as if from experiment.origin when present).
+Experiment loadExperimentCopy(const std::string& dir);
 
 class ExperimentRunner {
 public:
@@ -79,6 +85,9 @@ public:
     ~ExperimentRunner();
     /// The fixed CSV columns: config, the sweep keys, every scene parameter, every measurement field.
     const std::vector<std::string>& columns() const { return m_columns; }
+    /// Probes every .brdf shader (file and values) the configurations i with i mod shardN = shardK - 1 use,
+    /// so that a shader that does not build or runs too long fails before any result file is written.
+    void probeAll(const std::vector<Configuration>& configs, int shardK, int shardN);
     /// Measures one configuration: one JSON row.
     nlohmann::json measure(const Configuration& c);
     /// Plots, contact sheet and summary.md from the complete rows. seconds < 0: unknown (merge).
@@ -91,6 +100,9 @@ private:
     const measure::Shape& reference(const Configuration& c, std::vector<SceneArg> args);
     void addErrors(nlohmann::json& row, const measure::Shape& ref) const;
     render::Renderer& renderer();
+    /// Before a .brdf scene is rendered: its notes (once per file), the probe (once per file and values)
+    /// and the renderer's time limit.
+    void prepare(const render::Scene& scene, double shaderTimeout);
 
     const Experiment& m_exp;
     std::string m_backend;
@@ -100,6 +112,7 @@ private:
     std::map<std::string, measure::Shape> m_references;  ///< reference scene -> its measurement
     std::unique_ptr<gl::Context> m_context;
     std::unique_ptr<render::Renderer> m_renderer;
+    std::set<std::string> m_probed, m_noted;
 };
 
 }  // namespace hilite::cli

@@ -1,6 +1,7 @@
 // Runs the configurations of an experiment and makes its pictures and summary.
 
 #include "cli/experiment.hpp"
+#include "cli/shader_probe.hpp"
 #include "core/error.hpp"
 #include "brdf/evaluate.hpp"
 #include "experiments/measure_bumps.hpp"
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 namespace hilite::cli {
@@ -22,7 +24,8 @@ const std::vector<std::string> kMeasureColumns = {
     "model", "incidence_deg", "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg",
     "centroid_u_deg", "centroid_v_deg", "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg",
     "area_deg2", "cos_incidence", "flags", "renders", "size", "fov_deg", "minor_pixels", "method",
-    "matched_parameter", "render_ms", "measure_ms",
+    "matched_parameter", "brdf_params", "framing", "framing_note", "error_estimate", "error_estimate_from",
+    "render_ms", "measure_ms",
     // issue 10: what the highlight is measured about (retroreflection: its peak), a tabulated NDF's factor
     "framed_about", "peak_offset_deg", "ndf_table_normalization",
     // issue 10, explicit micro-geometry (empty on flat surfaces): see cli/micro_fields.hpp
@@ -33,7 +36,9 @@ const std::vector<std::string> kMeasureColumns = {
     "next_seed_major_over_analytic", "next_seed_minor_over_analytic", "prefilter_block_error",
     "supersample_block_noise", "prefilter_error", "prefilter_blocks", "prefilter_unresolved_blocks"};
 const std::vector<std::string> kNotSceneParams = {"help", "scene", "output", "float", "exposure", "json",
-                                                  "reference", "gl-backend", "incidence"};
+                                                  "reference", "gl-backend", "incidence", "shader-timeout"};
+/// With --brdf, the built-in model's flags mean nothing: their columns are left empty (null).
+const std::vector<std::string> kBrdfFileParams = {"brdf", "param", "tangent-angle"};
 
 std::string num(double v) {
     std::ostringstream s;
@@ -90,6 +95,9 @@ ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backe
         std::vector<SceneArg> args = e.base;
         args.insert(args.end(), e.match.begin(), e.match.end());
         ResolvedMeasure target = resolve(args, mf, nullptr);
+        if (target.scene.brdfFile)
+            throw InputError(e.path + ": [match]: matching widths needs a CPU twin, and a .brdf file has none "
+                                      "(set its parameters by hand)");
         target.scene.light.incidenceDeg = 0;
         m_targetMajorDeg = rad2deg(experiments::twinHalfWidth(target.scene, target.setup.options.threshold));
     }
@@ -103,6 +111,35 @@ render::Renderer& ExperimentRunner::renderer() {
         m_renderer = std::make_unique<render::Renderer>(*m_context);
     }
     return *m_renderer;
+}
+
+void ExperimentRunner::prepare(const render::Scene& scene, double shaderTimeout) {
+    if (!scene.brdfFile) return;
+    // Each .brdf file with each set of values passes the probe once (cli/shader_probe.hpp).
+    const std::string key = scene.brdfFile->path + "|" + brdf_file::valuesText(*scene.brdfFile) + "|" +
+                            render::toString(scene.light.type);
+    if (m_probed.insert(key).second) {
+        if (m_noted.insert(scene.brdfFile->path).second)
+            for (const std::string& note : scene.brdfFile->notes) std::cerr << "hilite: note: " << note << "\n";
+        probeShader(scene, m_backend, shaderTimeout);
+    }
+    renderer().setShaderTimeLimit(shaderTimeout);
+}
+
+void ExperimentRunner::probeAll(const std::vector<Configuration>& configs, int shardK, int shardN) {
+    std::set<std::string> seen;
+    for (const Configuration& c : configs) {
+        if (c.index % shardN != shardK - 1) continue;
+        // Only the flags the probe depends on decide whether a configuration needs its own probe.
+        std::string key;
+        for (const SceneArg& a : c.args)
+            if (a.flag == "--brdf" || a.flag == "--param" || a.flag == "--light" || a.flag == "--reference")
+                key += a.flag + "=" + a.value + "\n";
+        if (key.find("--brdf=") == std::string::npos || !seen.insert(key).second) continue;
+        MeasureFlags f;
+        const ResolvedMeasure r = resolve(c.args, f, nullptr);
+        if (!f.reference) prepare(r.scene, f.scene.shaderTimeout);
+    }
 }
 
 ResolvedMeasure ExperimentRunner::resolve(const std::vector<SceneArg>& args, MeasureFlags& flags,
@@ -130,8 +167,15 @@ ResolvedMeasure ExperimentRunner::resolve(const std::vector<SceneArg>& args, Mea
     if (params)
         for (const CLI::Option* o : app.get_options())
             if (isSceneParam(*o)) {
-                const std::string v = o->count() ? o->results().back() : o->get_default_str();
-                (*params)[paramName(*o)] = typed(v);
+                std::string v = o->count() ? o->results().back() : o->get_default_str();
+                if (o->get_multi_option_policy() == CLI::MultiOptionPolicy::TakeAll) {  // --param: all of them
+                    v.clear();
+                    for (const auto& x : o->results()) v += (v.empty() ? "" : ",") + x;
+                }
+                const bool builtinOnly = r.scene.brdfFile && sectionOf(*o) == "material" &&
+                                         std::find(kBrdfFileParams.begin(), kBrdfFileParams.end(),
+                                                   o->get_lnames().front()) == kBrdfFileParams.end();
+                (*params)[paramName(*o)] = builtinOnly ? nlohmann::json(nullptr) : typed(v);
             }
     return r;
 }
@@ -140,6 +184,9 @@ void ExperimentRunner::applyMatch(std::vector<SceneArg>& args, nlohmann::json& r
     if (m_exp.match.empty()) return;
     MeasureFlags f;
     ResolvedMeasure r = resolve(args, f, nullptr);
+    if (r.scene.brdfFile)
+        throw InputError(m_exp.path + ": [match]: matching widths needs a CPU twin, and " + r.scene.brdfFile->path +
+                         " (a .brdf file) has none: set its parameters by hand");
     r.scene.light.incidenceDeg = 0;
     const std::string key = brdf::toString(r.scene.brdf.model);
     const bool exponent = brdf::usesExponent(r.scene.brdf.model);
@@ -209,6 +256,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     if (r.angles.size() != 1)
         throw InputError(m_exp.path + ": light.incidence: one angle per configuration (sweep it with [[sweep]])");
     for (auto& [k, v] : params.items()) row[k] = v;
+    if (!f.reference) prepare(r.scene, f.scene.shaderTimeout);
     render::Renderer* gl = f.reference || r.setup.cpu ? nullptr : &renderer();
     // [timing]: warm-up runs (programs compiled, buffers allocated), then the median of the repeats'
     // wall times; the row's numbers are the last repeat's (every repeat measures the same).
@@ -259,6 +307,7 @@ void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohma
                 applyMatch(args, ignored);
                 MeasureFlags f;
                 ResolvedMeasure r = resolve(args, f, nullptr);
+                prepare(r.scene, f.scene.shaderTimeout);
                 const PinholeCamera cam = viewCamera(f.scene, View::Photo, r.scene, tw, th);
                 const ImageF tile = renderer().render(r.scene, cam, render::Output::Color);
                 double peak = 0;

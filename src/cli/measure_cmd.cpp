@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "cli/scene_file.hpp"
+#include "cli/shader_probe.hpp"
 #include "core/error.hpp"
 #include "experiments/measure_bumps.hpp"
 #include "experiments/measure_scene.hpp"
@@ -19,6 +20,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <tuple>
 
 namespace hilite::cli {
 
@@ -26,15 +28,21 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
                    int height, const std::string& method) {
     const measure::Shape& r = m.shape;
     nlohmann::json j;
-    j["model"] = brdf::toString(s.brdf.model);
-    if (brdf::usesExponent(s.brdf.model)) j["exponent"] = s.brdf.exponent;
-    else if (s.brdf.model != brdf::Model::Tabulated) j["roughness"] = s.brdf.roughness;  // a table has no width knob
-    if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable) {  // issue 10: the table and its normalization
-        j["ndf_table"] = s.brdf.ndfTable->file;
-        j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
+    if (s.brdfFile) {  // a .brdf file: its name stands for the model, its values for the parameters
+        j["model"] = s.brdfFile->path.substr(s.brdfFile->path.rfind('/') + 1);
+        j["brdf"] = s.brdfFile->path;
+        j["brdf_params"] = brdf_file::valuesText(*s.brdfFile);
+    } else {
+        j["model"] = brdf::toString(s.brdf.model);
+        if (brdf::usesExponent(s.brdf.model)) j["exponent"] = s.brdf.exponent;
+        else if (s.brdf.model != brdf::Model::Tabulated) j["roughness"] = s.brdf.roughness;  // a table has no width knob
+        if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable) {  // issue 10: the table and its normalization
+            j["ndf_table"] = s.brdf.ndfTable->file;
+            j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
+        }
+        j["fresnel"] = brdf::toString(s.brdf.fresnel);
+        j["geometry"] = brdf::toString(s.brdf.geometry);
     }
-    j["fresnel"] = brdf::toString(s.brdf.fresnel);
-    j["geometry"] = brdf::toString(s.brdf.geometry);
     j["incidence_deg"] = s.light.incidenceDeg;
     j["light"] = render::toString(s.light.type);
     // Under a point light each point of the plane has its own wi: the measured lobe is the eye's view.
@@ -64,6 +72,22 @@ nlohmann::json measurementRow(const render::Scene& s, const experiments::Measure
     j["render_ms"] = m.render_ms;
     j["measure_ms"] = m.measure_ms;
     if (s.surface.bumps) addMicroFields(j, s, m, f.threshold, width, height);  // issue 10: bump period, analytic twin
+    j["framing"] = m.framing;
+    if (!m.framingNote.empty()) j["framing_note"] = m.framingNote;
+    if (m.halfResolution) {
+        // No CPU twin for a .brdf: the error is estimated by measuring the same frame at half the size.
+        const measure::Shape& h = *m.halfResolution;
+        nlohmann::json e;
+        for (auto [key, a, b] : {std::tuple{"aspect", r.aspect, h.aspect}, {"eccentricity", r.eccentricity, h.eccentricity},
+                                 {"major_deg", r.major_deg, h.major_deg}, {"minor_deg", r.minor_deg, h.minor_deg},
+                                 {"centroid_u_deg", r.centroid_u_deg, h.centroid_u_deg},
+                                 {"centroid_v_deg", r.centroid_v_deg, h.centroid_v_deg}})
+            e[key] = std::isfinite(a - b) ? nlohmann::json(std::abs(a - b)) : nlohmann::json(nullptr);
+        j["error_estimate"] = e;
+        j["error_estimate_from"] = "resolution convergence (no CPU twin for .brdf)";
+        j["error_estimate_sizes"] = std::to_string(width) + "x" + std::to_string(height) + " vs " +
+                                    std::to_string(m.halfWidth) + "x" + std::to_string(m.halfHeight);
+    }
     return j;
 }
 
@@ -93,6 +117,15 @@ void printTableRow(const nlohmann::json& j) {
                 deg("minor_deg", 9).c_str(), num("orientation_deg"), deg("centroid_u_deg", 8).c_str(),
                 deg("centroid_v_deg", 8).c_str(), deg("fwhm_u_deg", 8).c_str(), deg("fwhm_v_deg", 8).c_str(),
                 flags.c_str());
+    if (j.contains("error_estimate") && j["error_estimate"].is_object()) {  // a .brdf: resolution convergence
+        auto err = [&](const char* k) {
+            return j["error_estimate"][k].is_null() ? NAN : j["error_estimate"][k].get<double>();
+        };
+        std::printf("  error estimate (resolution convergence, no CPU twin for .brdf): aspect %.1e, major %.1e, "
+                    "minor %.1e deg\n",
+                    err("aspect"), err("major_deg"), err("minor_deg"));
+    }
+    if (j.contains("framing_note")) std::printf("  note: %s\n", j["framing_note"].get<std::string>().c_str());
 }
 
 namespace {
@@ -148,7 +181,18 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
     parseView(f.scene.view);  // checked, but a measurement always uses the measurement view
     if (f.reference && scene.surface.bumps)
         throw InputError("--reference: the CPU reference evaluates the analytic BRDF (drop --bumps explicit)");
+    if (f.reference && scene.brdfFile)
+        throw InputError("--reference: no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU); the GL "
+                         "measurement reports error_estimate from resolution convergence instead");
     resolveAccuracyFlags(f, r);
+    if (scene.brdfFile && r.setup.cpu)
+        throw InputError("--renderer cpu: the CPU path cannot run a .brdf file's GLSL (use --renderer gl)");
+    if (scene.brdfFile && r.setup.supersample > 1)
+        throw InputError("--supersample: a .brdf file is framed blind and measured at one sample per pixel with the "
+                         "sub-pixel boundary (its error estimate comes from resolution convergence)");
+    if (scene.brdfFile && r.tolerance > 0)
+        throw InputError("--tolerance: needs the CPU twin to estimate errors, which a .brdf file does not have (its "
+                         "measurement reports error_estimate from resolution convergence instead)");
     return r;
 }
 
@@ -206,9 +250,13 @@ int runMeasure(const MeasureFlags& f) {
     const experiments::MeasureSetup& setup = resolved.setup;
     std::unique_ptr<gl::Context> context;
     std::unique_ptr<render::Renderer> renderer;
+    if (scene.brdfFile)
+        for (const std::string& note : scene.brdfFile->notes) std::cerr << "hilite: note: " << note << "\n";
     if (!f.reference && !setup.cpu) {
+        probeShader(scene, f.scene.backend, f.scene.shaderTimeout);  // before this process runs it
         context = std::make_unique<gl::Context>(parseBackendFlag(f.scene.backend));
         renderer = std::make_unique<render::Renderer>(*context);
+        renderer->setShaderTimeLimit(f.scene.shaderTimeout);
     }
     if (!f.json) printTableHeader();
     for (double angle : resolved.angles) {

@@ -142,6 +142,19 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
         ->capture_default_str();
     app.add_option("--gl-backend", f.backend, "auto | osmesa | egl (default: $HILITE_GL_BACKEND, else auto)");
     addSurfaceFlags(app, f.surface);
+    app.add_option("--brdf", f.brdf,
+                   "a BRDF Explorer .brdf file (analytic): its GLSL BRDF() replaces --model and its terms (only "
+                   "--tangent-angle still applies); no CPU twin, so measure frames blind and estimates its error "
+                   "from resolution convergence");
+    app.add_option("--param", f.params,
+                   "a .brdf parameter, NAME=VALUE: float within its declared range, bool 0|1, color V or R,G,B; "
+                   "repeat the flag or join several with commas (n=100,tint=1,0.5,0.2)")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--shader-timeout", f.shaderTimeout,
+                   "seconds a .brdf shader may take on a probe render in a child process, and on each compile and "
+                   "draw, before it is stopped (exit 2), in [0.001, 3600]")
+        ->capture_default_str();
 }
 
 brdf::Params brdfParams(const SceneFlags& f) {
@@ -236,6 +249,14 @@ brdf::Params brdfParams(const SceneFlags& f) {
 render::Scene sceneOf(const SceneFlags& f) {
     render::Scene s;
     s.brdf = brdfParams(f);
+    checkRange("--shader-timeout", f.shaderTimeout, 1e-3, 3600);
+    if (!f.params.empty() && f.brdf.empty())
+        throw InputError("--param: only with --brdf FILE (built-in models take --exponent, --roughness, ...)");
+    if (!f.brdf.empty()) {
+        auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(f.brdf));
+        for (const std::string& a : f.params) brdf_file::assign(*file, a);
+        s.brdfFile = std::move(file);
+    }
     s.light.azimuthDeg = checkRange("--azimuth", f.azimuth, -360, 360);
     s.light.irradiance = checkRange("--irradiance", f.irradiance, 0, 1e6);
     if (f.light == "point") s.light.type = render::LightType::Point;
@@ -246,6 +267,9 @@ render::Scene sceneOf(const SceneFlags& f) {
     s.eyeDistance = checkRange("--distance", f.distance, 1e-3, 1e6);
     s.surface = surfaceOf(f.surface);
     if (s.surface.bumps) {
+        if (s.brdfFile)
+            throw InputError("--bumps: the bump field's facets are mirrors with a known slope distribution; a .brdf "
+                             "file's BRDF() has none (drop --brdf or --bumps)");
         render::bumpSpec(s);  // the material must have a slope distribution (InputError naming --bumps)
         if (s.brdf.diffuse != brdf::Diffuse::None)
             throw InputError("--bumps: the bump render is specular only (drop --diffuse)");

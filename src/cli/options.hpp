@@ -44,6 +44,9 @@ struct SceneFlags {
     double intensity = 1.0;       ///< point light I
     double lightDistance = 10.0;  ///< point light distance from the origin
     std::string backend = "";  ///< empty: $HILITE_GL_BACKEND or auto
+    std::string brdf;                 ///< a BRDF Explorer .brdf file instead of --model ("" = none)
+    std::vector<std::string> params;  ///< its --param NAME=VALUE assignments, in order (later ones win)
+    double shaderTimeout = 10.0;      ///< seconds a .brdf shader may take: probe render, each compile, each draw
     std::string sceneFile;     ///< --scene: already expanded into flags by cli::run
     SurfaceFlags surface;      ///< [surface]: explicit micro-geometry (issue 10)
 };
@@ -54,6 +57,7 @@ void addSceneFlags(CLI::App& app, SceneFlags& f, const std::string& incidenceHel
 /// The validated BRDF of the flags.
 brdf::Params brdfParams(const SceneFlags& f);
 /// The validated scene of the flags (BRDF, light, eye distance); the incidence is left to the caller.
+/// With --brdf, the file is read and its --param values assigned (InputError naming file:line:param).
 render::Scene sceneOf(const SceneFlags& f);
 /// Parses --size "N" or "WxH" within 1..16384 and the memory this machine has.
 void parseSize(const std::string& s, int& width, int& height);

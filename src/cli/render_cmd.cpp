@@ -3,6 +3,7 @@
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
 #include "cli/scene_file.hpp"
+#include "cli/shader_probe.hpp"
 #include "core/error.hpp"
 #include "io/image_io.hpp"
 #include "render/renderer.hpp"
@@ -54,8 +55,12 @@ int runRender(const RenderFlags& f) {
     const ImageF probe;
     parseExposure(f.exposure, probe);
 
+    if (scene.brdfFile)
+        for (const std::string& note : scene.brdfFile->notes) std::cerr << "hilite: note: " << note << "\n";
+    probeShader(scene, f.scene.backend, f.scene.shaderTimeout);  // a .brdf runs in a child first, time-limited
     gl::Context context(parseBackendFlag(f.scene.backend));
     render::Renderer renderer(context);
+    renderer.setShaderTimeLimit(f.scene.shaderTimeout);
     const ImageF img = renderer.render(scene, camera, render::Output::Color);
     const double peak = peakOf(img);
     if (!f.png.empty()) {

@@ -53,6 +53,7 @@ int runExperiment(const RunFlags& f) {
     if (access(dir.c_str(), W_OK) != 0) throw InputError("-o: cannot write to '" + dir + "'");
     const auto configs = exp.configurations();  // validates every configuration before anything runs
     ExperimentRunner runner(exp, f.backend);
+    runner.probeAll(configs, shardK, shardN);  // a .brdf that does not build or runs too long: nothing written
     experiments::ResultsWriter writer(dir, runner.columns(), f.resume);
     writeExperimentCopy(exp, dir);
     size_t todo = 0;
@@ -92,7 +93,7 @@ int runMerge(const MergeFlags& f) {
         if (experimentFile.empty()) experimentFile = copy;
         for (auto& r : experiments::readRows(s + "/results.jsonl")) rows.push_back(std::move(r));
     }
-    const Experiment exp = loadExperiment(experimentFile);
+    const Experiment exp = loadExperimentCopy(experimentFile.substr(0, experimentFile.rfind('/')));
     std::set<long> seen;
     for (const auto& r : rows)
         if (!seen.insert(r["config"].get<long>()).second)

@@ -93,9 +93,12 @@ void addKey(const std::string& name, const std::string& section, const std::stri
     SceneArg arg{"--" + opt->get_lnames().front(), "", where(name, node) + ": " + full};
     if (!valueText(node, arg.value))
         throw InputError(arg.origin + ": expected a number, string, boolean or flat array");
-    // A data file named by a scene or experiment file is found beside that file (issue 10: ndf_table).
-    if (key == "ndf_table" && !arg.value.empty() && arg.value.front() != '/' && name.find('/') != std::string::npos)
-        arg.value = name.substr(0, name.rfind('/') + 1) + arg.value;
+    // A data file (ndf_table, issue 10) or a .brdf (issue 9) named in a scene or experiment file is found
+    // beside that file, whatever the current directory.
+    const auto slash = name.rfind('/');
+    if ((key == "ndf_table" || arg.flag == "--brdf") && !arg.value.empty() && arg.value.front() != '/' &&
+        slash != std::string::npos)
+        arg.value = name.substr(0, slash + 1) + arg.value;
     if (opt->get_expected_max() == 0) {  // a switch (--json): only true/false make sense
         if (!node.is_boolean()) throw InputError(arg.origin + ": expected true or false");
         if (arg.value == "false") return;
@@ -190,7 +193,7 @@ void assignSections(CLI::App& app, size_t firstOption) {
         {"light", "Light"},     {"intensity", "Light"}, {"light-distance", "Light"}};
     static const std::map<std::string, std::string> camera = {
         {"size", "Camera"}, {"fov", "Camera"}, {"view", "Camera"}, {"elevation", "Camera"},
-        {"distance", "Camera"}, {"gl-backend", "Camera"}};
+        {"distance", "Camera"}, {"gl-backend", "Camera"}, {"shader-timeout", "Camera"}};
     static const std::map<std::string, std::string> measurement = {
         {"threshold", "Measurement"}, {"min-pixels", "Measurement"}, {"boundary", "Measurement"},
         {"reference", "Measurement"}, {"supersample", "Measurement"}, {"renderer", "Measurement"}, {"crop", "Measurement"},

@@ -8,6 +8,8 @@
 #include "measure/supersample.hpp"
 #include "render/cpu_view.hpp"
 #include "experiments/peak_frame.hpp"
+#include "experiments/blind_framing.hpp"
+#include "experiments/framing.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -24,62 +26,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-/// Directions just above the horizon make the camera sit on the plane; keep it 1e-6 rad above.
-dvec3 liftAboveHorizon(dvec3 c) {
-    if (c.z < 1e-6) c = glm::normalize(dvec3(c.x, c.y, 1e-6));
-    return c;
-}
-
-constexpr double kMaxFovDeg = 160.0;   // a pinhole image beyond ~160 deg spends its pixels on the rim
-constexpr double kMinFovDeg = 1e-4;    // below this float directions (6e-8 rad) resolve < 30 steps a frame
-
-/// Pixel bounding box of the region (L >= frac * peak) in an (L, u, v, w) image.
-struct RegionBox {
-    int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1;
-    double peak = 0;
-    bool empty() const { return x1 < 0; }
-};
-
-RegionBox regionBox(const ImageF& img, double frac) {
-    RegionBox b;
-    for (size_t i = 0; i < img.data.size(); i += 4) b.peak = std::max(b.peak, double(img.data[i]));
-    if (!(b.peak > 0)) return b;
-    const double t = frac * b.peak;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            if (img.pixel(x, y)[0] >= t) {
-                b.x0 = std::min(b.x0, x), b.x1 = std::max(b.x1, x);
-                b.y0 = std::min(b.y0, y), b.y1 = std::max(b.y1, y);
-            }
-    return b;
-}
-
-struct Frame {
-    dvec3 center;
-    double fovDeg;
-};
-
-/// Re-aims the frame on the region's box and zooms so its half-extent is `fill` of the half-frame.
-/// Returns true when the frame was already good (box within [0.5 fill, 1] of the frame, not on the border).
-bool reframe(const PinholeCamera& cam, const RegionBox& box, double fill, Frame& f) {
-    const bool onBorder = box.x0 == 0 || box.y0 == 0 || box.x1 == cam.width - 1 || box.y1 == cam.height - 1;
-    // Box centre and half-extent in image-plane units (unit focal distance), pixel edges included.
-    const double cx = 0.5 * (box.x0 + box.x1 + 1), cy = 0.5 * (box.y0 + box.y1 + 1);
-    const double hx = 0.5 * (box.x1 - box.x0 + 1) * 2.0 * cam.tanHalfX / cam.width;
-    const double hy = 0.5 * (box.y1 - box.y0 + 1) * 2.0 * cam.tanHalfY / cam.height;
-    const double half = std::max(hx / cam.tanHalfX, hy / cam.tanHalfY);  // fraction of the half-frame
-    if (onBorder) {
-        f.fovDeg = std::min(kMaxFovDeg, 2.0 * rad2deg(std::atan(2.0 * cam.tanHalfX)));
-        f.center = liftAboveHorizon(-cam.ray(cx, cy));
-        return false;
-    }
-    const bool good = half >= 0.5 * fill && half <= 1.0;
-    f.center = liftAboveHorizon(-cam.ray(cx, cy));
-    const double tanHalf = std::max(hx, hy * cam.tanHalfX / cam.tanHalfY) / fill;
-    f.fovDeg = std::clamp(2.0 * rad2deg(std::atan(tanHalf)), kMinFovDeg, kMaxFovDeg);
-    return good;
-}
-
 }  // namespace
 
 PinholeCamera measurementCamera(const render::Scene& scene, const dvec3& center, double fovDeg, int w, int h) {
@@ -88,6 +34,7 @@ PinholeCamera measurementCamera(const render::Scene& scene, const dvec3& center,
 }
 
 measure::LobeFunction twinLobe(const render::Scene& scene) {
+    render::requireTwin(scene, "the CPU lobe");
     const MirrorChart chart = scene.light.chart();
     const dvec3 eye = render::eyePosition(scene);
     measure::LobeFunction f;
@@ -101,6 +48,7 @@ measure::LobeFunction twinLobe(const render::Scene& scene) {
 }
 
 std::array<double, 4> twinRadii(const render::Scene& scene, double threshold) {
+    render::requireTwin(scene, "the lobe width seed");
     const measure::LobeFunction f = twinLobe(scene);
     const double l0 = f.lobe(0, 0);
     if (!(l0 > 0)) return {deg2rad(30.0), deg2rad(30.0), deg2rad(30.0), deg2rad(30.0)};
@@ -233,6 +181,7 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
         throw InputError("--supersample: must be a whole number in [1, " + std::to_string(kMaxSupersample) +
                          "] (got " + std::to_string(setup.supersample) + ")");
     Measurement m;
+    m.framing = setup.fovDeg > 0 ? "fixed" : "automatic";
     Frame frame{liftAboveHorizon(scene.light.chart().wr()), setup.fovDeg};
     Aim aim;
     if (setup.fovDeg <= 0) aim = aimFrame(view, scene, setup, frame, m);
@@ -257,6 +206,8 @@ std::ostream& operator<<(std::ostream& os, const MeasureSetup& s) {
 }
 
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup) {
+    // No CPU twin (a .brdf file): framed from coarse renders alone, error from resolution convergence.
+    if (!render::hasTwin(scene)) return measureBlind(renderer, scene, setup);
     // A peak far from the mirror direction (retroreflection): framed and measured about the peak.
     if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureGl(renderer, *framed, setup);
     return measureWith(
@@ -282,8 +233,10 @@ Measurement measure(render::Renderer* renderer, const render::Scene& scene, cons
 }
 
 Measurement measureReference(const render::Scene& scene, const measure::Options& options) {
+    render::requireTwin(scene, "--reference");
     if (const auto framed = frameAboutPeak(scene, options.threshold)) return measureReference(*framed, options);
     Measurement m;
+    m.framing = "reference";
     const auto t0 = Clock::now();
     const double r = twinHalfWidth(scene, options.threshold);
     m.shape = measure::measureReference(twinLobe(scene), options, std::min(4.0 * r, kPi / 2));

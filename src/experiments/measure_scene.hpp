@@ -9,6 +9,7 @@
 
 #include <array>
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 namespace hilite::experiments {
@@ -23,6 +24,7 @@ struct MeasureSetup {
     measure::Options options;
     int coarseSize = 64;      ///< automatic framing: size of the aiming renders
     int maxRenders = 5;       ///< automatic framing: at most this many renders in all (aiming + final)
+    int maxBlindRenders = 16; ///< blind framing (no CPU twin, .brdf files): at most this many aiming renders
     double fill = 0.8;        ///< automatic framing: the region's half-extent as a fraction of the half-frame
     /// Automatic framing: the final frame is drawn, read and analysed only over the region's box seen in
     /// the last aiming render, plus a margin (the frame, its pixels and the numbers stay those of the
@@ -42,9 +44,17 @@ struct Measurement {
     double render_ms = 0;     ///< GL draw + readback (or the CPU twin's render), all renders
     double measure_ms = 0;    ///< analysis of the final render (and framing arithmetic)
     long shadedPixels = 0;    ///< pixels of the final frame drawn per sample (the crop, or the whole frame)
+    std::string framing;      ///< "automatic" (seeded by the twin), "blind" (coarse renders only) or "fixed"
+    std::string framingNote;  ///< blind framing: why it found no highlight, when it gave up ("" otherwise)
+    /// Without a CPU twin (a .brdf file) the error estimate comes from resolution convergence: the same
+    /// frame measured again at half the size (halfWidth x halfHeight); |final - this| per field estimates
+    /// the final measurement's error.
+    std::optional<measure::Shape> halfResolution;
+    int halfWidth = 0, halfHeight = 0;
 };
 
-/// The lobe of a scene as a function of chart coordinates, evaluated by the double twin.
+/// The lobe of a scene as a function of chart coordinates, evaluated by the double twin. Like everything
+/// twin-based below, it throws InputError for a .brdf scene (render::requireTwin).
 measure::LobeFunction twinLobe(const render::Scene& scene);
 
 /// Angular radii (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
@@ -53,14 +63,15 @@ std::array<double, 4> twinRadii(const render::Scene& scene, double threshold);
 /// The largest of twinRadii: a seed for framing and for the reference's search disc.
 double twinHalfWidth(const render::Scene& scene, double threshold);
 
-/// Measures the highlight in GL with fixed or automatic framing.
+/// Measures the highlight in GL with fixed or automatic framing. A .brdf scene has no twin to seed the
+/// framing: it is measured by measureBlind (experiments/blind_framing.hpp).
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);
 /// The same measurement with every render made by the CPU double twin (render/cpu_view.hpp).
 Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup);
 /// measureCpu when setup.cpu, else measureGl (`renderer` may be null for the CPU path).
 Measurement measure(render::Renderer* renderer, const render::Scene& scene, const MeasureSetup& setup);
 
-/// The CPU double-precision reference of the same definition (no GL).
+/// The CPU double-precision reference of the same definition (no GL). InputError for a .brdf scene.
 Measurement measureReference(const render::Scene& scene, const measure::Options& options);
 
 /// The measurement camera looking along `center` with the given field of view.

@@ -64,6 +64,8 @@ LobePeak findPeak(const render::Scene& scene) {
 std::optional<render::Scene> frameAboutPeak(const render::Scene& scene, double threshold) {
     // Bumps are framed by their analytic twin; under a point light the eye sits on the chart's centre, so the
     // lobe it sees would move with the frame: both stay about the mirror direction.
+    // Without a CPU twin (a .brdf file) there is no lobe to search: blind framing finds its region instead.
+    if (!render::hasTwin(scene)) return std::nullopt;
     if (scene.light.chartCenter || scene.surface.bumps || scene.light.type != render::LightType::Directional)
         return std::nullopt;
     const LobePeak p = findPeak(scene);

@@ -11,10 +11,14 @@
 namespace hilite::gl {
 
 std::string joinSources(const std::vector<SourcePiece>& pieces) {
+    if (pieces.size() > kMaxPieces) throw SystemError("shader: more than " + std::to_string(kMaxPieces) + " source pieces");
     std::string out;
     for (size_t i = 0; i < pieces.size(); ++i) {
+        if (pieces[i].firstLine < 1 || pieces[i].firstLine >= kLineStride / 2)
+            throw SystemError("shader: piece " + pieces[i].file + " starts at line " + std::to_string(pieces[i].firstLine));
         // Piece 0 holds #version, which must come first; later pieces announce where they come from.
-        if (i > 0) out += "#line " + std::to_string(pieces[i].firstLine) + " " + std::to_string(i) + "\n";
+        if (i > 0)
+            out += "#line " + std::to_string(long(i) * kLineStride + pieces[i].firstLine) + " " + std::to_string(i) + "\n";
         out += pieces[i].text;
         if (!out.empty() && out.back() != '\n') out += '\n';
     }
@@ -29,8 +33,9 @@ std::string translateLog(const std::string& log, const std::vector<SourcePiece>&
     for (std::string line; std::getline(in, line);) {
         std::smatch m;
         if (std::regex_search(line, m, loc)) {
-            const size_t k = std::stoul(m[1]);
-            int n = std::stoi(m[2]);
+            size_t k = std::stoul(m[1]);
+            long n = std::stol(m[2]);
+            if (n >= kLineStride) k = size_t(n / kLineStride), n %= kLineStride;  // the line names the piece
             if (k < pieces.size()) {
                 if (k == 0) n += pieces[0].firstLine - 1;
                 line = m.prefix().str() + pieces[k].file + ":" + std::to_string(n) + ":" + m[3].str() +
@@ -59,7 +64,8 @@ GLuint compile(GLenum type, const std::vector<SourcePiece>& pieces) {
         glGetShaderInfoLog(shader, len, nullptr, log.data());
         glDeleteShader(shader);
         const char* kind = type == GL_VERTEX_SHADER ? "vertex" : "fragment";
-        throw SystemError(std::string(kind) + " shader failed to compile:\n" + translateLog(log.c_str(), pieces));
+        const std::string translated = translateLog(log.c_str(), pieces);
+        throw ShaderError(std::string(kind) + " shader failed to compile:\n" + translated, translated);
     }
     return shader;
 }
@@ -90,8 +96,10 @@ Program::Program(const std::vector<SourcePiece>& vertex, const std::vector<Sourc
         glGetProgramInfoLog(m_id, len, nullptr, log.data());
         glDeleteProgram(m_id);
         m_id = 0;
-        throw SystemError("shader program failed to link (" + vertex.back().file + " + " + fragment.back().file +
-                          "):\n" + translateLog(log.c_str(), fragment));
+        const std::string translated = translateLog(log.c_str(), fragment);
+        throw ShaderError("shader program failed to link (" + vertex.back().file + " + " + fragment.back().file +
+                              "):\n" + translated,
+                          translated);
     }
     HILITE_GL_CHECK_WHAT("glLinkProgram");
 }

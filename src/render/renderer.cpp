@@ -3,12 +3,15 @@
 #include "brdf/evaluate.hpp"
 #include "brdf/ndf_table.hpp"
 #include "render/bumps.hpp"
+#include "core/error.hpp"
 #include "gl/check.hpp"
+#include "render/brdf_file_source.hpp"
 
 #include <glad/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <ostream>
 #include <stdexcept>
 #include <sstream>
@@ -16,7 +19,13 @@
 namespace hilite::render {
 
 std::ostream& operator<<(std::ostream& os, const Scene& s) {
-    os << s.brdf << " light=" << toString(s.light.type) << " incidence=" << s.light.incidenceDeg
+    if (s.brdfFile) {
+        os << *s.brdfFile;
+        if (s.brdf.tangentAngleDeg != 0) os << " tangent-angle=" << s.brdf.tangentAngleDeg;
+    } else {
+        os << s.brdf;
+    }
+    os << " light=" << toString(s.light.type) << " incidence=" << s.light.incidenceDeg
        << " azimuth=" << s.light.azimuthDeg;
     if (s.light.type == LightType::Point)
         return os << " intensity=" << s.light.intensity << " light_distance=" << s.light.distance
@@ -55,7 +64,14 @@ dvec3 eyePosition(const Scene& s) {
     return s.eyeDistance * c;
 }
 
+void requireTwin(const Scene& s, const std::string& what) {
+    if (s.brdfFile)
+        throw InputError(s.brdfFile->path + ": no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU; " +
+                         what + " needs one)");
+}
+
 dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we) {
+    if (s.brdfFile) requireTwin(s, "the double-precision evaluation");  // checked first: no string per call
     if (s.light.type == LightType::Directional)
         return brdf::radiance(s.brdf, s.light.direction(), we, s.light.irradiance);
     const dvec3 p = eye - (eye.z / we.z) * we;  // where the eye's ray meets the plane
@@ -102,6 +118,12 @@ glm::mat4 viewProjection(const PinholeCamera& c, dvec2 jitter) {
     return glm::mat4(proj * view);
 }
 
+std::string secondsText(double s) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", s);
+    return buf;
+}
+
 void set3(const gl::Program& p, const char* name, const dvec3& v) {
     p.set(name, float(v.x), float(v.y), float(v.z));
 }
@@ -138,6 +160,41 @@ const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightTyp
     return *m_programs.emplace(key, std::move(prog)).first->second;
 }
 
+const gl::Program& Renderer::program(const Scene& scene, Output out) {
+    if (!scene.brdfFile) return program(scene.brdf, out, scene.light.type, scene.surface.bumps);
+    const brdf_file::BrdfFile& f = *scene.brdfFile;
+    const std::string key = brdfFileKey(f, out) + (scene.light.type == LightType::Point ? "+pointLight" : "");
+    auto it = m_programs.find(key);
+    if (it != m_programs.end()) return *it->second;
+    ProgramSources src = assembleBrdfFile(f, out, m_shaderDir);
+    if (scene.light.type == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    Watchdog::Scope guard{nullptr};
+    if (m_shaderTimeLimit > 0) {
+        m_watchdog.arm(m_shaderTimeLimit, "hilite: " + f.path + ": shader took longer than " +
+                                              secondsText(m_shaderTimeLimit) + " s to compile; stopped\n");
+        guard.dog = &m_watchdog;
+    }
+    try {
+        auto prog = std::make_unique<gl::Program>(src.vertex, src.fragment);
+        return *m_programs.emplace(key, std::move(prog)).first->second;
+    } catch (const gl::ShaderError& e) {
+        throw InputError(brdfBuildError(f, src, e.log));
+    }
+}
+
+void Renderer::setBrdfFileUniforms(const gl::Program& prog, const Scene& scene) const {
+    double c, s;
+    cosSinDeg(scene.brdf.tangentAngleDeg, c, s);
+    if (prog.uniform("uTangent") >= 0) prog.set("uTangent", float(c), float(s));
+    for (const brdf_file::Parameter& p : scene.brdfFile->parameters) {
+        const int loc = prog.uniform(p.name.c_str());
+        if (loc < 0) continue;  // declared but unused: the compiler dropped it
+        if (p.type == brdf_file::ParamType::Bool) glUniform1i(loc, p.value.x != 0 ? 1 : 0);
+        else if (p.type == brdf_file::ParamType::Float) glUniform1f(loc, float(p.value.x));
+        else glUniform3f(loc, float(p.value.x), float(p.value.y), float(p.value.z));
+    }
+}
+
 void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam, dvec2 jitter) const {
     prog.setMat4("uViewProj", glm::value_ptr(viewProjection(cam, jitter)));
     prog.set("uJitter", float(jitter.x), float(jitter.y));
@@ -157,6 +214,7 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
     set3(prog, "uWr", chart.wr());
     set3(prog, "uEu", chart.eu());
     set3(prog, "uEv", chart.ev());
+    if (scene.brdfFile) return setBrdfFileUniforms(prog, scene);
     const brdf::Params& b = scene.brdf;
     if (prog.uniform("uExponent") >= 0) prog.set("uExponent", float(b.exponent));
     if (prog.uniform("uRoughness") >= 0) prog.set("uRoughness", float(b.roughness));
@@ -176,7 +234,7 @@ void Renderer::draw(const Scene& scene, const PinholeCamera& camera, Output out,
     if (!crop.empty() && (crop.x < 0 || crop.y < 0 || crop.x + crop.width > camera.width ||
                           crop.y + crop.height > camera.height))
         throw std::logic_error("Renderer::draw: crop outside the image");
-    const gl::Program& prog = program(scene.brdf, out, scene.light.type, scene.surface.bumps);
+    const gl::Program& prog = program(scene, out);
     gl::Framebuffer& fbo = framebuffer(camera.width, camera.height);
     fbo.bind();
     glDisable(GL_BLEND);
@@ -217,8 +275,17 @@ void Renderer::readback(ImageF& image) {
 
 void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image, dvec2 jitter,
                       const PixelRect& crop) {
+    program(scene, out);  // compiled first, under its own time limit: program() disarms the watchdog when done
+    Watchdog::Scope guard{nullptr};
+    if (scene.brdfFile && m_shaderTimeLimit > 0) {
+        m_watchdog.arm(m_shaderTimeLimit, "hilite: " + scene.brdfFile->path + ": shader took longer than " +
+                                              secondsText(m_shaderTimeLimit) + " s on a " +
+                                              std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                                              " render; stopped (raise --shader-timeout if it is only slow)\n");
+        guard.dog = &m_watchdog;
+    }
     draw(scene, camera, out, jitter, crop);
-    readback(image);
+    readback(image);  // waits for the draw: the watchdog covers both
 }
 
 gl::Framebuffer& Renderer::framebuffer(int width, int height) {

@@ -9,6 +9,7 @@
 #include "gl/program.hpp"
 #include "render/scene.hpp"
 #include "render/shader_source.hpp"
+#include "render/watchdog.hpp"
 
 #include <map>
 #include <memory>
@@ -48,11 +49,20 @@ public:
     /// The program for an effect set (compiled on first use).
     const gl::Program& program(const brdf::Params& p, Output out, LightType light = LightType::Directional,
                                bool bumps = false);
+    /// The program a scene renders with: its .brdf file's when it has one, else program(scene.brdf, ...).
+    /// A .brdf whose GLSL does not build throws InputError naming the file and line.
+    const gl::Program& program(const Scene& scene, Output out);
+
+    /// Time limit in seconds on each compile and draw of a .brdf program (0: none, the default): past it
+    /// the process ends with exit code 2 and a one-line message (see render/watchdog.hpp). Built-in terms
+    /// are hilite's own code and never limited.
+    void setShaderTimeLimit(double seconds) { m_shaderTimeLimit = seconds; }
     size_t programCount() const { return m_programs.size(); }
     const std::string& shaderDir() const { return m_shaderDir; }
 
 private:
     void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam, dvec2 jitter) const;
+    void setBrdfFileUniforms(const gl::Program& prog, const Scene& scene) const;
 
     std::string m_shaderDir;
     std::map<std::string, std::unique_ptr<gl::Program>> m_programs;
@@ -64,6 +74,8 @@ private:
     PixelRect m_drawnCrop;               ///< and what of it was drawn
     unsigned int m_vao = 0, m_vbo = 0;
     std::unique_ptr<class BumpTextures> m_bumpTextures;  ///< issue 10: the bump fields' textures
+    double m_shaderTimeLimit = 0;
+    Watchdog m_watchdog;
 };
 
 }  // namespace hilite::render

@@ -2,12 +2,15 @@
 // What is rendered: the plane's BRDF, a distant light, and the view.
 
 #include "brdf/params.hpp"
+#include "brdf_file/brdf_file.hpp"
 #include "core/camera.hpp"
 #include "core/chart.hpp"
 #include "render/surface.hpp"
 
 #include <iosfwd>
+#include <memory>
 #include <optional>
+#include <string>
 
 namespace hilite::render {
 
@@ -43,6 +46,10 @@ struct Light {
 
 struct Scene {
     brdf::Params brdf;
+    /// A BRDF Explorer .brdf file with its parameter values: when set, its GLSL BRDF() replaces the built-in
+    /// model of `brdf` (of which only tangentAngleDeg still applies: it turns the tangent frame X, Y).
+    /// It has no CPU twin: surfaceRadiance() and everything built on it refuse such a scene.
+    std::shared_ptr<const brdf_file::BrdfFile> brdfFile;
     Light light;
     /// Distance of the eye (the measurement camera) from the origin, on the mirror direction. Only a
     /// point light makes the image depend on it: a distant light's radiance depends on direction alone.
@@ -58,7 +65,11 @@ dvec3 eyePosition(const Scene& s);
 
 /// Radiance reaching an eye at `eye` from the plane along exitant direction `we` (unit, we.z > 0):
 /// f(wi, we) E cos(theta_i), with wi and E those of the point the ray meets. Double-precision twin of
-/// the shader's main(): for a directional light `eye` is irrelevant.
+/// the shader's main(): for a directional light `eye` is irrelevant. Throws InputError for a .brdf scene.
 dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we);
+/// Whether the CPU double twin can evaluate the scene (false for a .brdf file).
+inline bool hasTwin(const Scene& s) { return !s.brdfFile; }
+/// Throws InputError "PATH: no CPU twin for a .brdf file (`what` needs one)" for a .brdf scene.
+void requireTwin(const Scene& s, const std::string& what);
 
 }  // namespace hilite::render

@@ -63,6 +63,8 @@ std::string findDirectory(const char* env, const std::string& sub, const std::st
 
 }  // namespace
 
+std::string readShaderFile(const std::string& path) { return readFile(path); }
+
 std::string shaderDirectory() {
     return findDirectory("HILITE_SHADER_DIR", "shaders", HILITE_INSTALL_SHADER_DIR, "brdf.glsl", "shader files");
 }

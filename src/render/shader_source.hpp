@@ -21,6 +21,9 @@ std::string shaderDirectory();
 /// $HILITE_DATA_DIR, else <exe>/../share/hilite/data, else the install prefix.
 std::string dataDirectory();
 
+/// The text of a shader file; SystemError naming it when it cannot be read.
+std::string readShaderFile(const std::string& path);
+
 /// One "//@block NAME needs A B" ... "//@end" section of a shader file.
 struct ShaderBlock {
     std::string name;
