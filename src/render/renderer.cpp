@@ -262,6 +262,9 @@ void Renderer::draw(const Scene& scene, const PinholeCamera& camera, Output out,
     glBindVertexArray(m_vao);
     glDrawArrays(GL_TRIANGLES, 0, 12);
     HILITE_GL_CHECK_WHAT("drawing the plane");
+    // Leave no scissor behind: other GL users of the context (the hard-case term runner) draw and clear whole
+    // framebuffers, and a crop's rectangle left enabled silently kept their pixels at the clear colour.
+    glDisable(GL_SCISSOR_TEST);
     m_drawn = &fbo;
     m_drawnCrop = crop;
 }

@@ -80,6 +80,7 @@ TermOutcome runTermGl(const TermCase& c) {
     fbo.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);  // the shared context may come from a cropped render
     glClearColor(0.f, 0.f, 0.f, 0.f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     prog.use();
