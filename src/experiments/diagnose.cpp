@@ -70,7 +70,8 @@ bool lightReaches(const render::Scene& scene) {
     return l.irradiance > 0 && l.direction().z > 0;
 }
 
-void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape) {
+void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape,
+              const LobeWidths* widths) {
     using measure::Flag;
     if (brdf::isDelta(scene.brdf)) {
         // No pixel and no search can sample a delta: the highlight is the mirror image of the light, of
@@ -80,7 +81,7 @@ void diagnose(const render::Scene& scene, double threshold, Path path, measure::
         return;
     }
     if (unboundedAtHorizon(scene, shape)) shape.flags.push_back(Flag::UnboundedAtHorizon);
-    const LobeWidths w = twinLobeWidths(scene, threshold);
+    const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
     if (!(w.peak > 0)) return;
     // The lobe exists, yet no pixel centre of a fixed frame sees it: the frame is too coarse for it.
     if (path != Path::Reference && shape.has(Flag::NoHighlight)) replace(shape, Flag::NoHighlight, Flag::UnderResolved);

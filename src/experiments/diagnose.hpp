@@ -48,6 +48,8 @@ enum class Path { Gl, Cpu, Reference };
 
 /// Adds the diagnoses above to a measurement of `scene` by `path` (replacing no_highlight where the lobe
 /// exists). `threshold`: the measurement's fraction of the peak.
-void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape);
+/// `widths`: twinLobeWidths(scene, threshold) when the caller has it already (it costs ~1000 twin evaluations).
+void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape,
+              const LobeWidths* widths = nullptr);
 
 }  // namespace hilite::experiments

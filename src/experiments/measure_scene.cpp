@@ -170,8 +170,8 @@ measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixel
 /// box can miss whole stretches of the region (measured: anisotropic Beckmann 1e-4 x 1 at 45 deg, 256^2,
 /// 1.4 aiming pixels across: the crop kept a 5.0 deg piece of a region that runs past the frame's edge, and
 /// hid the `clipped` flag).
-bool aimResolves(const render::Scene& scene, const MeasureSetup& setup, const Frame& frame) {
-    const double minor = twinLobeWidths(scene, setup.options.threshold).minor;
+bool aimResolves(const LobeWidths& widths, const MeasureSetup& setup, const Frame& frame) {
+    const double minor = widths.minor;
     const double pitch = 2.0 * std::tan(deg2rad(frame.fovDeg) / 2) / setup.coarseSize;  // rad per aiming pixel
     return !(minor > 0) || 2.0 * minor >= 2.0 * pitch;
 }
@@ -186,11 +186,13 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     Aim aim;
     if (setup.fovDeg <= 0) aim = aimFrame(view, scene, setup, frame, m);
     const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
-    const PixelRect crop = setup.crop && aim.good && aimResolves(scene, setup, frame) ? cropOf(aim, cam) : PixelRect{};
+    // The twin's widths: for the crop's decision and the diagnoses (computed once: ~1000 twin evaluations).
+    const LobeWidths widths = twinLobeWidths(scene, setup.options.threshold);
+    const PixelRect crop = setup.crop && aim.good && aimResolves(widths, setup, frame) ? cropOf(aim, cam) : PixelRect{};
     m.shape = analyse(view, cam, crop, setup, m);
     // The region reached the crop's edge: the crop was too tight, not the frame. Measure the whole frame.
     if (!crop.empty() && m.shape.has(measure::Flag::Clipped)) m.shape = analyse(view, cam, PixelRect{}, setup, m);
-    diagnose(scene, setup.options.threshold, path, m.shape);  // mirror, sub-pixel lobes, float limits
+    diagnose(scene, setup.options.threshold, path, m.shape, &widths);  // mirror, sub-pixel lobes, float limits
     m.fovDeg = frame.fovDeg;
     m.center = frame.center;
     return m;
