@@ -1,37 +1,22 @@
 // `hilite brdf` as a user meets it: tables and JSON lines with the documented fields, the strip PNG,
 // and bad input as one line naming the flag with exit code 2.
 
+#include "support/run_hilite.hpp"
+
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+using hilite_test::hilite;
+
 namespace {
-
-struct Result {
-    int code = -1;
-    std::string out;  ///< stdout and stderr
-};
-
-Result hilite(const std::string& args) {
-    const std::string cmd = std::string(HILITE_EXE) + " " + args + " 2>&1";
-    Result r;
-    FILE* p = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf{};
-    while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
 
 std::vector<nlohmann::json> jsonLines(const std::string& out) {
     std::vector<nlohmann::json> lines;
@@ -40,11 +25,8 @@ std::vector<nlohmann::json> jsonLines(const std::string& out) {
     return lines;
 }
 
-int lineCount(const std::string& s) {
-    int n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
-}
+/// The shared line count, under the name this file uses (its tests name their JSON rows `lines`).
+int lineCount(const std::string& s) { return hilite_test::lines(s); }
 
 }  // namespace
 

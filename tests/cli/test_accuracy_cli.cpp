@@ -2,15 +2,12 @@
 // --crop) and `hilite run` with case axes, reference errors, timing and the Pareto summary; the shipped
 // accuracy_cost experiment at reduced size.
 
+#include "support/run_hilite.hpp"
+
 #include <doctest/doctest.h>
 
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -18,30 +15,9 @@
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace hilite_test;
 
 namespace {
-
-struct Result {
-    int code = -1;
-    std::string out;
-};
-
-Result hilite(const std::string& args, bool stdoutOnly = false) {
-    const std::string cmd = std::string(HILITE_EXE) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
-    Result r;
-    FILE* p = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf{};
-    while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-int lines(const std::string& s) {
-    int n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
-}
 
 struct Dir {
     fs::path path;

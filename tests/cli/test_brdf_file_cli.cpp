@@ -1,17 +1,13 @@
 // .brdf files from the command line, scene files and experiments: exit codes, one-line errors naming the
 // file, line and parameter, nothing written on bad input, and a shader that runs too long stopped.
 
+#include "support/run_hilite.hpp"
+
 #include <doctest/doctest.h>
 
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -19,27 +15,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using namespace hilite_test;
 
 namespace {
-
-struct Result {
-    int code = -1;
-    std::string out;  ///< stdout and stderr
-    double seconds = 0;
-};
-
-Result hilite(const std::string& args, bool stdoutOnly = false) {
-    const std::string cmd = std::string(HILITE_EXE) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
-    Result r;
-    const auto t0 = std::chrono::steady_clock::now();
-    FILE* p = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf{};
-    while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return r;
-}
 
 /// Lines of output that are not notes ("hilite: note: ...").
 std::vector<std::string> errorLines(const std::string& s) {

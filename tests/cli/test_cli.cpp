@@ -1,42 +1,20 @@
 // The command line as a user meets it: exit codes, one-line errors, nothing written on bad input.
 
+#include "support/run_hilite.hpp"
+
 #include <doctest/doctest.h>
 
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+using namespace hilite_test;
+
 namespace {
-
-struct Result {
-    int code = -1;
-    std::string out;  ///< stdout and stderr
-};
-
-/// Runs hilite; the output holds stdout, and stderr too unless `stdoutOnly`.
-Result hilite(const std::string& args, bool stdoutOnly = false) {
-    const std::string cmd = std::string(HILITE_EXE) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
-    Result r;
-    FILE* p = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf{};
-    while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-int lines(const std::string& s) {
-    int n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
-}
 
 std::string tmpPath(const std::string& name) {
     return (std::filesystem::temp_directory_path() / ("hilite-cli-" + std::to_string(getpid()) + "-" + name)).string();

@@ -1,35 +1,18 @@
 // Scene files and `hilite explain` from the command line: shipped scenes, round trip, bad files.
 
+#include "support/run_hilite.hpp"
+
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace hilite_test;
 
 namespace {
-
-struct Result {
-    int code = -1;
-    std::string out;
-};
-
-Result run(const std::string& args) {
-    Result r;
-    FILE* p = popen((std::string(HILITE_EXE) + " " + args + " 2>&1").c_str(), "r");
-    std::array<char, 4096> buf{};
-    while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
 
 struct Tmp {
     fs::path dir = fs::temp_directory_path() / ("hilite-scenes-" + std::to_string(getpid()));
@@ -47,10 +30,10 @@ TEST_CASE("cli::explain every shipped scene resolves and measures") {
     int count = 0;
     for (const auto& e : fs::directory_iterator(fs::path(HILITE_SOURCE_DIR_STR) / "experiments/scenes")) {
         CAPTURE(e.path().string());
-        const auto r = run("explain --part effects --scene " + e.path().string());
+        const auto r = hilite("explain --part effects --scene " + e.path().string());
         CHECK(r.code == 0);
         CHECK(r.out.find("light") != std::string::npos);
-        const auto m = run("measure --view measure --size 64 --json --scene " + e.path().string());
+        const auto m = hilite("measure --view measure --size 64 --json --scene " + e.path().string());
         CHECK(m.code == 0);
         ++count;
     }
@@ -59,22 +42,22 @@ TEST_CASE("cli::explain every shipped scene resolves and measures") {
 
 TEST_CASE("cli::explain the resolved scene is a scene file that resolves to itself") {
     Tmp t;
-    const auto first = run("explain --part scene --model beckmann --roughness 0.2 --fresnel schlick --f0 0.9,0.6,0.3 "
-                           "--incidence 30 --light point --light-distance 2");
+    const auto first = hilite("explain --part scene --model beckmann --roughness 0.2 --fresnel schlick "
+                              "--f0 0.9,0.6,0.3 --incidence 30 --light point --light-distance 2");
     REQUIRE(first.code == 0);
     const std::string file = t.write("resolved.toml", first.out);
-    const auto second = run("explain --part scene --scene " + file);
+    const auto second = hilite("explain --part scene --scene " + file);
     CHECK(second.code == 0);
     CHECK(second.out == first.out);
 }
 
 TEST_CASE("cli::explain prints only the named terms' GLSL") {
-    const auto none = run("explain --part glsl --model ggx --fresnel none");
+    const auto none = hilite("explain --part glsl --model ggx --fresnel none");
     CHECK(none.code == 0);
     CHECK(none.out.find("D_GGX(") != std::string::npos);
     CHECK(none.out.find("F_Schlick") == std::string::npos);
     CHECK(none.out.find("F_Dielectric") == std::string::npos);
-    const auto schlick = run("explain --part glsl --model ggx --fresnel schlick");
+    const auto schlick = hilite("explain --part glsl --model ggx --fresnel schlick");
     CHECK(schlick.out.find("vec3 F_Schlick(") != std::string::npos);
 }
 
@@ -97,7 +80,7 @@ TEST_CASE("cli scene files: bad input names the file, line and key; exit 2; noth
              Case{"nested.toml", "[material]\nroughness = [[1]]\n", "material.roughness"},
          }) {
         CAPTURE(c.name);
-        const auto r = run("render -o " + out + " --scene " + t.write(c.name, c.text));
+        const auto r = hilite("render -o " + out + " --scene " + t.write(c.name, c.text));
         CAPTURE(r.out);
         CHECK(r.code == 2);
         CHECK(r.out.find(c.expect) != std::string::npos);
@@ -109,7 +92,7 @@ TEST_CASE("cli scene files: bad input names the file, line and key; exit 2; noth
 TEST_CASE("cli scene files: flags override the file") {
     Tmp t;
     const std::string file = t.write("s.toml", "[material]\nmodel = \"beckmann\"\nroughness = 0.3\n");
-    const auto r = run("explain --part scene --roughness 0.05 --scene " + file);
+    const auto r = hilite("explain --part scene --roughness 0.05 --scene " + file);
     CHECK(r.out.find("model = \"beckmann\"") != std::string::npos);
     CHECK(r.out.find("roughness = 0.05") != std::string::npos);
 }
