@@ -19,14 +19,9 @@ using namespace hilite_test;
 
 namespace {
 
-struct Dir {
-    fs::path path;
-    Dir() : path(fs::temp_directory_path() / ("hilite-accuracy-" + std::to_string(getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~Dir() { fs::remove_all(path); }
-    std::string operator/(const std::string& s) const { return (path / s).string(); }
+/// The scratch directory of this file's runs.
+struct Dir : TempDir {
+    Dir() : TempDir("hilite-accuracy") {}
 };
 
 std::string readText(const std::string& path) {

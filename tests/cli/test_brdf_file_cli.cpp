@@ -30,18 +30,9 @@ std::vector<std::string> errorLines(const std::string& s) {
 
 const std::string kShipped = std::string(HILITE_SOURCE_DIR_STR) + "/experiments/brdfs/";
 
-struct Dir {
-    fs::path path;
-    Dir() : path(fs::temp_directory_path() / ("hilite-brdf-cli-" + std::to_string(getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~Dir() { fs::remove_all(path); }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path / name) << text;
-        return (path / name).string();
-    }
-    std::string operator/(const std::string& s) const { return (path / s).string(); }
+/// The scratch directory of this file's runs.
+struct Dir : TempDir {
+    Dir() : TempDir("hilite-brdf-cli") {}
 };
 
 const std::string kShaderHead = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n";

@@ -1,5 +1,7 @@
 // hilite run / merge end to end on a small experiment: rows, fields, resume and shards.
 
+#include "support/run_hilite.hpp"
+
 #include <doctest/doctest.h>
 
 #include <signal.h>
@@ -74,15 +76,9 @@ std::vector<std::map<std::string, std::string>> comparable(Csv csv) {
     return csv.rows;
 }
 
-struct Dir {
-    fs::path path;
-    Dir() : path(fs::temp_directory_path() / ("hilite-run-" + std::to_string(getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-        std::ofstream(path / "small.toml") << kExperiment;
-    }
-    ~Dir() { fs::remove_all(path); }
-    std::string operator/(const std::string& s) const { return (path / s).string(); }
+/// A scratch directory holding the small experiment as small.toml.
+struct Dir : hilite_test::TempDir {
+    Dir() : TempDir("hilite-run") { write("small.toml", kExperiment); }
 };
 
 }  // namespace

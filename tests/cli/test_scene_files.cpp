@@ -14,14 +14,9 @@ using namespace hilite_test;
 
 namespace {
 
-struct Tmp {
-    fs::path dir = fs::temp_directory_path() / ("hilite-scenes-" + std::to_string(getpid()));
-    Tmp() { fs::create_directories(dir); }
-    ~Tmp() { fs::remove_all(dir); }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(dir / name) << text;
-        return (dir / name).string();
-    }
+/// The scratch directory of this file's scene files.
+struct Tmp : TempDir {
+    Tmp() : TempDir("hilite-scenes") {}
 };
 
 }  // namespace
@@ -63,7 +58,7 @@ TEST_CASE("cli::explain prints only the named terms' GLSL") {
 
 TEST_CASE("cli scene files: bad input names the file, line and key; exit 2; nothing written") {
     Tmp t;
-    const std::string out = (t.dir / "out.png").string();
+    const std::string out = t / "out.png";
     struct Case {
         std::string name, text, expect;
     };
