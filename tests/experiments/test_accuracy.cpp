@@ -6,22 +6,16 @@
 #include "render/cpu_view.hpp"
 
 #include "gl/gl_fixture.hpp"
+#include "support/scenes.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
 
 using namespace hilite;
+using test::scene;
 
 namespace {
-
-render::Scene scene(brdf::Model m, double param, double incidence) {
-    render::Scene s;
-    s.brdf.model = m;
-    (brdf::usesExponent(m) ? s.brdf.exponent : s.brdf.roughness) = param;
-    s.light.incidenceDeg = incidence;
-    return s;
-}
 
 /// The hard and the ordinary: narrow lobes, grazing incidence, a horizon cut.
 std::vector<render::Scene> scenes() {

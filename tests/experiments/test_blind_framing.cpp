@@ -5,6 +5,7 @@
 #include "experiments/blind_framing.hpp"
 
 #include "gl/gl_fixture.hpp"
+#include "support/scenes.hpp"
 
 #include <doctest/doctest.h>
 
@@ -14,14 +15,6 @@
 using namespace hilite;
 
 namespace {
-
-render::Scene builtin(brdf::Model m, double param, double incidence) {
-    render::Scene s;
-    s.brdf.model = m;
-    (brdf::usesExponent(m) ? s.brdf.exponent : s.brdf.roughness) = param;
-    s.light.incidenceDeg = incidence;
-    return s;
-}
 
 std::shared_ptr<const brdf_file::BrdfFile> shipped(const std::string& name, const std::string& assignments) {
     auto f = std::make_shared<brdf_file::BrdfFile>(
@@ -56,7 +49,7 @@ TEST_CASE("experiments::measureBlind each shipped .brdf file measures as its bui
         for (double inc : {0.0, 30.0, 60.0, 75.0}) {
             CAPTURE(c.file);
             CAPTURE(inc);
-            const render::Scene s = builtin(c.model, c.param, inc);
+            const render::Scene s = test::scene(c.model, c.param, inc);
             render::Scene f = s;
             f.brdfFile = shipped(c.file, c.assignments);
             const auto a = experiments::measureGl(renderer(), s, {});
@@ -85,7 +78,7 @@ TEST_CASE("experiments::measureBlind agrees with twin-seeded framing on built-in
                           Case{brdf::Model::Beckmann, 0.4, 20}}) {
         CAPTURE(c.param);
         CAPTURE(c.incidence);
-        const render::Scene s = builtin(c.model, c.param, c.incidence);
+        const render::Scene s = test::scene(c.model, c.param, c.incidence);
         const auto twin = experiments::measureGl(renderer(), s, {});
         const auto blind = experiments::measureBlind(renderer(), s, {});
         CHECK(blind.framingNote.empty());
@@ -101,7 +94,7 @@ TEST_CASE("experiments::measureBlind agrees with twin-seeded framing on built-in
 TEST_CASE("experiments::measureBlind error estimate from resolution convergence bounds the error") {
     for (double inc : {0.0, 45.0, 70.0}) {
         CAPTURE(inc);
-        const render::Scene s = builtin(brdf::Model::GGX, 0.1, inc);
+        const render::Scene s = test::scene(brdf::Model::GGX, 0.1, inc);
         const auto ref = experiments::measureReference(s, {});
         for (int size : {64, 128, 512}) {
             CAPTURE(size);

@@ -4,22 +4,16 @@
 #include "experiments/measure_scene.hpp"
 
 #include "gl/gl_fixture.hpp"
+#include "support/scenes.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
 
 using namespace hilite;
+using test::scene;
 
 namespace {
-
-render::Scene scene(brdf::Model m, double param, double incidence) {
-    render::Scene s;
-    s.brdf.model = m;
-    (brdf::usesExponent(m) ? s.brdf.exponent : s.brdf.roughness) = param;
-    s.light.incidenceDeg = incidence;
-    return s;
-}
 
 experiments::Measurement glMeasure(const render::Scene& s, experiments::MeasureSetup setup = {}) {
     return experiments::measureGl(*test::glEnv().renderer, s, setup);

@@ -6,6 +6,7 @@
 #include "experiments/peak_frame.hpp"
 
 #include "gl/gl_fixture.hpp"
+#include "support/scenes.hpp"
 
 #include <doctest/doctest.h>
 
@@ -15,11 +16,9 @@ using namespace hilite;
 
 namespace {
 
+/// The shared test scene (support/scenes.hpp) with the light at azimuth 25 deg.
 render::Scene scene(brdf::Model m, double param, double incidence) {
-    render::Scene s;
-    s.brdf.model = m;
-    (brdf::usesExponent(m) ? s.brdf.exponent : s.brdf.roughness) = param;
-    s.light.incidenceDeg = incidence;
+    render::Scene s = test::scene(m, param, incidence);
     s.light.azimuthDeg = 25.0;
     return s;
 }

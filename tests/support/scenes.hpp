@@ -1,0 +1,18 @@
+#pragma once
+// Shared scene builders of the GL and experiment tests.
+
+#include "brdf/params.hpp"
+#include "render/scene.hpp"
+
+namespace hilite::test {
+
+/// The default scene with built-in model `m`, `param` its exponent or roughness (usesExponent), lit at `incidence` deg.
+inline render::Scene scene(brdf::Model m, double param, double incidence) {
+    render::Scene s;
+    s.brdf.model = m;
+    (brdf::usesExponent(m) ? s.brdf.exponent : s.brdf.roughness) = param;
+    s.light.incidenceDeg = incidence;
+    return s;
+}
+
+}  // namespace hilite::test
