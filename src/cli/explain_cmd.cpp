@@ -8,6 +8,7 @@
 #include "gl/program.hpp"
 #include "render/renderer.hpp"
 
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -36,7 +37,15 @@ void printScene(const CLI::App& app, std::ostream& os) {
         std::string key = o->get_lnames().front();
         if (key == "reference" || key == "gl-backend") continue;
         std::replace(key.begin(), key.end(), '-', '_');
-        const std::string v = o->count() ? o->results().back() : o->get_default_str();
+        if (o->get_multi_option_policy() == CLI::MultiOptionPolicy::TakeAll && o->count() > 0) {  // --param: all, in order
+            std::string list;
+            for (const std::string& v : o->results()) list += (list.empty() ? "\"" : ", \"") + v + "\"";
+            sections[section].push_back(key + " = [" + list + "]");
+            continue;
+        }
+        std::string v = o->count() ? o->results().back() : o->get_default_str();
+        // A file a scene names is found beside the scene file: written absolute, the output works anywhere.
+        if ((key == "brdf" || key == "ndf_table") && !v.empty()) v = std::filesystem::absolute(v).lexically_normal();
         if (v.empty()) {
             sections[section].push_back("# " + key + " = (not set: " + o->get_description() + ")");
             continue;
@@ -63,8 +72,7 @@ int runExplain(const ExplainFlags& f, const CLI::App& app) {
         for (const auto& e : render::activeEffects(r.scene)) std::cout << (all ? "#   " : "") << e << "\n";
     if (all) std::cout << "\n# ---- Generated GLSL: fragment shader of the measurement view ----\n";
     if (all || f.part == "glsl") {
-        const auto src = render::programSources(r.scene.brdf, render::Output::Measure, r.scene.light.type,
-                                                render::shaderDirectory());
+        const auto src = render::programSources(r.scene, render::Output::Measure, render::shaderDirectory());
         std::cout << gl::joinSources(src.fragment);
     }
     return 0;

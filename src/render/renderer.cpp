@@ -43,7 +43,20 @@ ProgramSources programSources(const brdf::Params& p, Output out, LightType light
     return src;
 }
 
+ProgramSources programSources(const Scene& scene, Output out, const std::string& shaderDir) {
+    if (!scene.brdfFile) return programSources(scene.brdf, out, scene.light.type, shaderDir, scene.surface.bumps);
+    ProgramSources src = assembleBrdfFile(*scene.brdfFile, out, shaderDir);
+    if (scene.light.type == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    return src;
+}
+
 std::vector<std::string> activeEffects(const Scene& scene) {
+    if (scene.brdfFile) {  // the file's BRDF() is the whole reflectance: no built-in term runs, and no CPU twin
+        return {".brdf file " + scene.brdfFile->path + ": its BRDF() (" + brdf_file::valuesText(*scene.brdfFile) +
+                    "), GLSL only: no CPU twin",
+                scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
+                                                     : "directional light (E cos)"};
+    }
     std::vector<std::string> out = termBlocks(scene.brdf);
     out.push_back(scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
                                                        : "directional light (E cos)");
@@ -166,8 +179,7 @@ const gl::Program& Renderer::program(const Scene& scene, Output out) {
     const std::string key = brdfFileKey(f, out) + (scene.light.type == LightType::Point ? "+pointLight" : "");
     auto it = m_programs.find(key);
     if (it != m_programs.end()) return *it->second;
-    ProgramSources src = assembleBrdfFile(f, out, m_shaderDir);
-    if (scene.light.type == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    const ProgramSources src = programSources(scene, out, m_shaderDir);
     Watchdog::Scope guard{nullptr};
     if (m_shaderTimeLimit > 0) {
         m_watchdog.arm(m_shaderTimeLimit, "hilite: " + f.path + ": shader took longer than " +

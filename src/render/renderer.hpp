@@ -22,6 +22,8 @@ namespace hilite::render {
 /// which is an effect too (the point-light code of shade.frag compiles only when named).
 ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir,
                               bool bumps = false);
+/// The program a scene compiles: its .brdf file's (the file's BRDF() in hilite's frame) or programSources().
+ProgramSources programSources(const Scene& scene, Output out, const std::string& shaderDir);
 /// The effects a scene runs, in the program and in the CPU twin alike: the term blocks and the light.
 std::vector<std::string> activeEffects(const Scene& scene);
 

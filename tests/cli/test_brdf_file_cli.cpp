@@ -254,3 +254,27 @@ TEST_CASE("cli::run sweeps a .brdf parameter; rows record it; shards merge; [mat
     CHECK(r.code == 2);
     CHECK(r.out.find("[match]: matching widths needs a CPU twin") != std::string::npos);
 }
+
+TEST_CASE("cli::explain --brdf shows the file's program and effects, and its scene file measures the same") {
+    Dir d;
+    const std::string flags = "--brdf " + kShipped + "ggx.brdf --param alpha=0.05 --param alpha=0.2";
+    const auto effects = hilite("explain " + flags + " --part effects", true);
+    CHECK(effects.code == 0);
+    CHECK(effects.out.find(".brdf file " + kShipped + "ggx.brdf: its BRDF() (alpha=0.2)") != std::string::npos);
+    CHECK(effects.out.find("D_GGX") == std::string::npos);  // no built-in term runs
+    const auto glsl = hilite("explain " + flags + " --part glsl", true);
+    CHECK(glsl.out.find("vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )") != std::string::npos);  // the file's text
+    CHECK(glsl.out.find("D_GGX(") == std::string::npos);
+    // The resolved scene is a scene file (absolute .brdf path, every --param in order) that measures the same.
+    const auto scene = hilite("explain " + flags + " --part scene", true);
+    CHECK(scene.out.find("param = [\"alpha=0.05\", \"alpha=0.2\"]") != std::string::npos);
+    d.write("resolved.toml", scene.out);
+    const auto direct = hilite("measure " + flags + " --incidence 45 --size 128 --json", true);
+    const auto viaFile = hilite("measure --scene " + (d / "resolved.toml") + " --incidence 45 --size 128 --json", true);
+    REQUIRE(direct.code == 0);
+    REQUIRE(viaFile.code == 0);
+    const auto a = nlohmann::json::parse(direct.out), b = nlohmann::json::parse(viaFile.out);
+    CHECK(a["aspect"] == b["aspect"]);
+    CHECK(a["major_deg"] == b["major_deg"]);
+    CHECK(b["brdf_params"] == "alpha=0.2");
+}
