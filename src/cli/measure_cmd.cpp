@@ -193,6 +193,15 @@ ResolvedMeasure resolveMeasure(const MeasureFlags& f) {
     if (scene.brdfFile && r.tolerance > 0)
         throw InputError("--tolerance: needs the CPU twin to estimate errors, which a .brdf file does not have (its "
                          "measurement reports error_estimate from resolution convergence instead)");
+    // A bump field renders on the GL path only; the CPU path would silently measure the analytic BRDF instead.
+    if (scene.surface.bumps && r.setup.cpu)
+        throw InputError("--renderer cpu: the CPU path renders the analytic BRDF, not a bump field (drop --bumps "
+                         "explicit, or use --renderer gl)");
+    // --tolerance predicts the error of a size from the analytic lobe's convergence; a bump field's image changes
+    // with the size itself (its period is set in pixels), so the prediction would not hold.
+    if (scene.surface.bumps && r.tolerance > 0)
+        throw InputError("--tolerance: calibrated on analytic lobes; a bump field's render changes with the size "
+                         "(--bump-period-px is in pixels): choose --size and --bump-samples instead");
     return r;
 }
 

@@ -175,6 +175,19 @@ TEST_CASE("cli tabulated NDF: bad tables are one-line errors naming file:line, e
     std::filesystem::remove(table);
 }
 
+TEST_CASE("cli a flag combination a path cannot honour is refused, never silently measured another way") {
+    struct Case { const char* args; const char* mentions; };
+    for (const Case c : {Case{"--model beckmann --bumps explicit --renderer cpu", "--renderer cpu"},
+                         Case{"--model beckmann --bumps explicit --tolerance 1e-3", "--tolerance"},
+                         Case{"--model beckmann --bumps explicit --reference", "--reference"}}) {
+        CAPTURE(c.args);
+        const auto r = hilite(std::string("measure --incidence 30 --size 32 ") + c.args);
+        CHECK(r.code == 2);
+        CHECK(lines(r.out) == 1);
+        CHECK(r.out.find(c.mentions) != std::string::npos);
+    }
+}
+
 TEST_CASE("cli --bump-filter moments refuses ggx bumps (their slopes are not Gaussian)") {
     const auto r = hilite("measure --model ggx --bumps explicit --bump-filter moments --size 32");
     CHECK(r.code == 2);
