@@ -20,7 +20,8 @@ namespace hilite::experiments {
 /// well inside it (they are bounded by the mirror direction's elevation, and are a few degrees for alpha <= 0.3).
 constexpr double kFarPeakDeg = 20.0;
 
-/// A peak with cos theta_o below this lies on the horizon (within 2.9 deg of it) and is not framed about.
+/// A peak with cos theta_o below this (within 2.9 deg of the horizon) whose lobe still rises toward the horizon
+/// is the horizon itself, not a maximum of the lobe: it is not framed about.
 constexpr double kHorizonPeakCos = 0.05;
 
 struct LobePeak {
@@ -29,6 +30,7 @@ struct LobePeak {
     double mirrorValue = 0;    ///< the lobe at the mirror direction
     double offsetDeg = 0;      ///< angle between the peak and the mirror direction
     double fromLightDeg = 0;   ///< angle between the peak and the light direction wi
+    bool risesToHorizon = false;  ///< the lobe at half the peak's elevation is no lower: the peak is the horizon
 };
 
 /// The twin's peak: candidates (mirror direction, light direction, normal) and a grid over the visible

@@ -103,6 +103,19 @@ TEST_CASE("experiments::measureGl retroreflection: framed and measured about the
         CHECK(std::abs(m.shape.centroid_v_deg) < 0.01);
         CHECK(angleDeg(m.center, s.light.direction()) < 0.05);  // the frame looks back at the light
     }
+    SUBCASE("a narrow lobe 0.1 deg above the horizon is a true maximum: framed about it, not about the mirror") {
+        // (Beckmann/GGX roughness 10, whose lobe rises all the way to the horizon, stay about the mirror
+        // direction: tests/hard. Here the lobe falls on both sides of its peak, 0.0067 deg wide.)
+        const render::Scene s = scene(brdf::Model::Retro, 1e8, 89.9);
+        const auto p = experiments::findPeak(s);
+        CHECK_FALSE(p.risesToHorizon);
+        REQUIRE(experiments::frameAboutPeak(s, 0.5));
+        const auto m = experiments::measureGl(renderer, s, setup);
+        const auto ref = experiments::measureReference(s, setup.options);
+        CHECK_FALSE(m.shape.has(measure::Flag::NoHighlight));
+        CHECK(std::abs(m.shape.aspect - 1.0) < 2e-3);
+        CHECK(m.shape.major_deg == doctest::Approx(ref.shape.major_deg).epsilon(2e-3));
+    }
     SUBCASE("about the mirror direction the frame misses it: nothing to measure there") {
         render::Scene s = scene(brdf::Model::Retro, 1000, 60);
         s.light.chartCenter = s.light.chart().wr();  // a chart already set: no reframing
