@@ -82,10 +82,11 @@ float D_GGX(float NoH, float sin2h, float alpha) {
 }
 //@end
 
-//@block D_Gaussian needs common
+//@block angleFromSinCos
 // theta from (sin, cos) by three half-angle steps, tan(theta/8) <= tan(pi/16) = 0.199, and the atan series
 // to t^11 (truncation < 3e-10 relative). GLSL's atan(y, x) is good to ~1e-6 rad absolute on llvmpipe, i.e.
 // 2e-5 relative at theta = 0.05, which exp(-(theta/m)^2) amplifies to 3e-4 for m = 0.02. c > 0.
+// (The twin: brdf::angleFromSinCos, atan2 in double.)
 float angleFromSinCos(float s, float c) {
     float t = s / (1.0 + c);            // tan(theta / 2)
     t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 4)
@@ -93,6 +94,9 @@ float angleFromSinCos(float s, float c) {
     float t2 = t * t;
     return 8.0 * t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 + t2 * (-1.0 / 7.0 + t2 * (1.0 / 9.0 - t2 / 11.0)))));
 }
+//@end
+
+//@block D_Gaussian needs common angleFromSinCos
 // Gaussian NDF in the angle: D(h) = k_G exp(-(theta_h / m)^2), k_G computed on the CPU (no closed form).
 // Cook & Torrance 1982.
 float D_Gaussian(float NoH, float sin2h, float m, float kG) {
@@ -127,21 +131,14 @@ float D_GGXAniso(float HoX, float HoY, float NoH, float ax, float ay) {
 }
 //@end
 
-//@block D_Tabulated needs common
+//@block D_Tabulated needs common angleFromSinCos
 // Tabulated (hand-painted) NDF: D(theta_h) linear in theta_h between the rows (theta_k, D_k) of a table, 0 beyond
 // the last row, normalized on the CPU so that int D (n.h) dw = 1 (src/brdf/ndf_table.hpp). The row is found by
-// bisection, as in the twin. theta_h from (sin, cos) as angleFromSinCos of D_Gaussian (copied: one NDF a program).
+// bisection, as in the twin.
 uniform vec2 uNdfTable[HILITE_NDF_TABLE_ROWS];  // (theta_h radians, D), theta_h increasing from 0
-float ndfTableTheta(float s, float c) {
-    float t = s / (1.0 + c);            // tan(theta / 2)
-    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 4)
-    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 8)
-    float t2 = t * t;
-    return 8.0 * t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 + t2 * (-1.0 / 7.0 + t2 * (1.0 / 9.0 - t2 / 11.0)))));
-}
 float D_Tabulated(float NoH, float sin2h) {
     if (NoH <= 0.0) return 0.0;  // back-facing microfacet
-    float t = ndfTableTheta(sqrt(sin2h), NoH);
+    float t = angleFromSinCos(sqrt(sin2h), NoH);
     vec2 last = uNdfTable[HILITE_NDF_TABLE_ROWS - 1];
     if (t >= last.x) return t == last.x ? last.y : 0.0;  // beyond the table: 0
     int lo = 0, hi = HILITE_NDF_TABLE_ROWS - 1;  // invariant: theta_lo <= t < theta_hi
