@@ -8,7 +8,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace hilite;
 
@@ -26,6 +28,35 @@ render::Scene bumpScene(double incidence, double periodPx) {
     return s;
 }
 
+struct TwinComparison {
+    int compared = 0;     ///< pixels above 1e-2 of the twin's peak (red)
+    double maxErr = 0;    ///< largest relative GL-vs-twin difference over them
+};
+
+/// Renders `s` through `cam` in GL and compares the first `channels` colour channels of every pixel above
+/// 1e-2 of the twin's peak with render::bumpPixelRadiance.
+TwinComparison compareWithBumpTwin(const render::Scene& s, const PinholeCamera& cam, int channels) {
+    const ImageF img = test::glEnv().renderer->render(s, cam, render::Output::Color);
+    double peak = 0;
+    std::vector<dvec3> twin;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            twin.push_back(render::bumpPixelRadiance(s, cam, x, y));
+            peak = std::max(peak, twin.back().x);
+        }
+    REQUIRE(peak > 0);
+    TwinComparison r;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const dvec3& t = twin[size_t(y * cam.width + x)];
+            if (t.x < 1e-2 * peak) continue;
+            ++r.compared;
+            for (int c = 0; c < channels; ++c)
+                r.maxErr = std::max(r.maxErr, std::abs(img.pixel(x, y)[c] - t[c]) / t[c]);
+        }
+    return r;
+}
+
 }  // namespace
 
 TEST_CASE("render::bumpPixelRadiance twin matches the GL bump render") {
@@ -34,23 +65,9 @@ TEST_CASE("render::bumpPixelRadiance twin matches the GL bump render") {
     s.brdf.fresnel = brdf::Fresnel::Schlick;
     s.brdf.f0 = {0.9, 0.6, 0.3};
     const PinholeCamera cam = experiments::measurementCamera(s, s.light.chart().wr(), 25.0, 40, 40);
-    const ImageF img = test::glEnv().renderer->render(s, cam, render::Output::Color);
-    double peak = 0, maxErr = 0;
-    int compared = 0;
-    std::vector<dvec3> twin;
-    for (int y = 0; y < cam.height; ++y)
-        for (int x = 0; x < cam.width; ++x) {
-            twin.push_back(render::bumpPixelRadiance(s, cam, x, y));
-            peak = std::max(peak, twin.back().x);
-        }
-    REQUIRE(peak > 0);
-    for (int y = 0; y < cam.height; ++y)
-        for (int x = 0; x < cam.width; ++x) {
-            const dvec3& t = twin[size_t(y * cam.width + x)];
-            if (t.x < 1e-2 * peak) continue;
-            ++compared;
-            maxErr = std::max(maxErr, std::abs(img.pixel(x, y)[0] - t.x) / t.x);
-        }
+    const TwinComparison r = compareWithBumpTwin(s, cam, 1);
+    const int compared = r.compared;
+    const double maxErr = r.maxErr;
     CAPTURE(compared);
     CHECK(compared > 20);
     CHECK(maxErr < 2e-2);  // float positions on the tile and float Gaussians of a few-sigma exponent
@@ -63,23 +80,9 @@ TEST_CASE("render::bumpPixelRadiance: the moments prefilter's twin matches GL") 
         s.brdf.fresnel = brdf::Fresnel::Schlick;
         s.brdf.f0 = {0.9, 0.6, 0.3};
         const PinholeCamera cam = experiments::measurementCamera(s, s.light.chart().wr(), 30.0, 32, 32);
-        const ImageF img = test::glEnv().renderer->render(s, cam, render::Output::Color);
-        double peak = 0, maxErr = 0;
-        int compared = 0;
-        std::vector<dvec3> twin;
-        for (int y = 0; y < cam.height; ++y)
-            for (int x = 0; x < cam.width; ++x) {
-                twin.push_back(render::bumpPixelRadiance(s, cam, x, y));
-                peak = std::max(peak, twin.back().x);
-            }
-        REQUIRE(peak > 0);
-        for (int y = 0; y < cam.height; ++y)
-            for (int x = 0; x < cam.width; ++x) {
-                const dvec3& t = twin[size_t(y * cam.width + x)];
-                if (t.x < 1e-2 * peak) continue;
-                ++compared;
-                for (int c = 0; c < 3; ++c) maxErr = std::max(maxErr, std::abs(img.pixel(x, y)[c] - t[c]) / t[c]);
-            }
+        const TwinComparison r = compareWithBumpTwin(s, cam, 3);
+        const int compared = r.compared;
+        const double maxErr = r.maxErr;
         CAPTURE(period);
         CAPTURE(compared);
         CHECK(compared > 300);
