@@ -243,10 +243,14 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
 }
 
 void Renderer::draw(const Scene& scene, const PinholeCamera& camera, Output out, dvec2 jitter, const PixelRect& crop) {
+    drawWith(program(scene, out), scene, camera, jitter, crop);
+}
+
+void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const PinholeCamera& camera, dvec2 jitter,
+                        const PixelRect& crop) {
     if (!crop.empty() && (crop.x < 0 || crop.y < 0 || crop.x + crop.width > camera.width ||
                           crop.y + crop.height > camera.height))
         throw std::logic_error("Renderer::draw: crop outside the image");
-    const gl::Program& prog = program(scene, out);
     gl::Framebuffer& fbo = framebuffer(camera.width, camera.height);
     fbo.bind();
     glDisable(GL_BLEND);
@@ -290,7 +294,8 @@ void Renderer::readback(ImageF& image) {
 
 void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image, dvec2 jitter,
                       const PixelRect& crop) {
-    program(scene, out);  // compiled first, under its own time limit: program() disarms the watchdog when done
+    // Compiled (or found) first, under its own time limit: program() disarms the watchdog when it is done.
+    const gl::Program& prog = program(scene, out);
     Watchdog::Scope guard{nullptr};
     if (scene.brdfFile && m_shaderTimeLimit > 0) {
         m_watchdog.arm(m_shaderTimeLimit, "hilite: " + scene.brdfFile->path + ": shader took longer than " +
@@ -299,7 +304,7 @@ void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output ou
                                               " render; stopped (raise --shader-timeout if it is only slow)\n");
         guard.dog = &m_watchdog;
     }
-    draw(scene, camera, out, jitter, crop);
+    drawWith(prog, scene, camera, jitter, crop);
     readback(image);  // waits for the draw: the watchdog covers both
 }
 

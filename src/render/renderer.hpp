@@ -63,6 +63,9 @@ public:
     const std::string& shaderDir() const { return m_shaderDir; }
 
 private:
+    /// draw() with the program already chosen (render() compiles it before arming the watchdog).
+    void drawWith(const gl::Program& prog, const Scene& scene, const PinholeCamera& camera, dvec2 jitter,
+                  const PixelRect& crop);
     void setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam, dvec2 jitter) const;
     void setBrdfFileUniforms(const gl::Program& prog, const Scene& scene) const;
 
