@@ -49,11 +49,11 @@ int runExperiment(const RunFlags& f) {
     parseShard(f.shard, shardK, shardN);
     const Experiment exp = loadExperiment(findExperiment(f.experiment));
     const std::string dir = f.out.empty() ? "results/" + exp.name : f.out;
-    fs::create_directories(dir);
-    if (access(dir.c_str(), W_OK) != 0) throw InputError("-o: cannot write to '" + dir + "'");
     const auto configs = exp.configurations();  // validates every configuration before anything runs
     ExperimentRunner runner(exp, f.backend);
     runner.probeAll(configs, shardK, shardN);  // a .brdf that does not build or runs too long: nothing written
+    fs::create_directories(dir);  // only now: bad input leaves not even an empty folder behind
+    if (access(dir.c_str(), W_OK) != 0) throw InputError("-o: cannot write to '" + dir + "'");
     experiments::ResultsWriter writer(dir, runner.columns(), f.resume);
     writeExperimentCopy(exp, dir);
     size_t todo = 0;

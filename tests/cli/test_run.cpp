@@ -184,6 +184,7 @@ TEST_CASE("cli::run bad experiment files: one line, exit 2") {
     std::ofstream(d / "bad2.toml") << "[[sweep]]\nkey = \"light.incidence\"\nvalues = [100]\n";
     CHECK(sh(std::string(HILITE_EXE) + " run " + (d / "bad2.toml") + " -o " + (d / "bad2")) == 2);
     CHECK_FALSE(fs::exists(d / "bad2/results.csv"));
+    CHECK_FALSE(fs::exists(d / "bad2"));  // not even the output folder
 }
 
 TEST_CASE("experiments shipped in experiments/ all validate") {
