@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
 #ifndef HILITE_EXE
@@ -33,15 +32,9 @@ struct Result {
     double seconds = 0;  ///< wall-clock time from starting hilite to its exit
 };
 
-/// LeakSanitizer's own crash while it suspends threads at exit ("Tracer caught signal 11", google/sanitizers
-/// #1353, open): a failure of the sanitizer runtime, not a finding, and intermittent (1 of the 4 full
-/// sanitized CI runs of 2026-11-23, in one of its several hundred hilite processes). A real report reads
-/// "ERROR: LeakSanitizer: detected memory leaks" or "ERROR: AddressSanitizer" and is never retried.
-constexpr const char* kLsanRuntimeCrash = "LeakSanitizer has encountered a fatal error";
-
-/// One run: stdout through the pipe, stderr into `errFile`.
-inline Result runOnce(const std::string& args, const std::string& errFile) {
-    const std::string cmd = std::string(HILITE_EXE) + " " + args + " 2>" + errFile;
+/// Runs `hilite <args>` through the shell; the output holds stdout, and stderr too unless `stdoutOnly`.
+inline Result hilite(const std::string& args, bool stdoutOnly = false) {
+    const std::string cmd = std::string(HILITE_EXE) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
     Result r;
     const auto t0 = std::chrono::steady_clock::now();
     FILE* p = popen(cmd.c_str(), "r");
@@ -51,26 +44,6 @@ inline Result runOnce(const std::string& args, const std::string& errFile) {
     const int status = pclose(p);
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return r;
-}
-
-/// Runs `hilite <args>` through the shell; the output holds stdout, then stderr too unless `stdoutOnly`.
-/// Run once more, only when the sanitizer runtime itself crashed (kLsanRuntimeCrash).
-inline Result hilite(const std::string& args, bool stdoutOnly = false) {
-    static int calls = 0;
-    const std::string errFile = (std::filesystem::temp_directory_path() /
-                                 ("hilite-test-stderr-" + std::to_string(getpid()) + "-" + std::to_string(++calls)))
-                                    .string();
-    Result r;
-    std::string err;
-    for (int attempt = 0; attempt < 2; ++attempt) {
-        r = runOnce(args, errFile);
-        std::ifstream in(errFile);
-        err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-        if (err.find(kLsanRuntimeCrash) == std::string::npos) break;
-    }
-    std::filesystem::remove(errFile);
-    if (!stdoutOnly) r.out += err;
     return r;
 }
 
