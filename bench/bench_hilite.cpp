@@ -8,8 +8,8 @@
 //   --benchmark_filter=View                 GL float path against the CPU double path, same pixels, all cores
 
 #include "brdf/spectral.hpp"
-#include "experiments/measure_scene.hpp"
-#include "experiments/tolerance.hpp"
+#include "measurement/measure_scene.hpp"
+#include "measurement/tolerance.hpp"
 #include "gl/context.hpp"
 #include "render/cpu_view.hpp"
 #include "render/renderer.hpp"
@@ -49,7 +49,7 @@ render::Scene ggx(double incidence, double alpha = 0.1) {
 
 /// The measurement camera on the mirror direction with a 30 degree field: the whole frame is shaded.
 PinholeCamera frameOf(const render::Scene& s, int size) {
-    return experiments::measurementCamera(s, s.light.chart().wr(), 30, size, size);
+    return measurement::measurementCamera(s, s.light.chart().wr(), 30, size, size);
 }
 
 void pixelRate(benchmark::State& state, double pixels) {
@@ -60,15 +60,15 @@ void pixelRate(benchmark::State& state, double pixels) {
 // ---- One measurement ----
 
 void BM_MeasureAutoFramed(benchmark::State& state) {
-    experiments::MeasureSetup setup;
+    measurement::MeasureSetup setup;
     setup.width = setup.height = int(state.range(0));
     setup.crop = state.range(1) != 0;
     const render::Scene s = ggx(60);
-    experiments::measureGl(*env().renderer, s, setup);  // warm-up: compile, allocate
-    experiments::Measurement m;
+    measurement::measureGl(*env().renderer, s, setup);  // warm-up: compile, allocate
+    measurement::Measurement m;
     double renderMs = 0, measureMs = 0;
     for (auto _ : state) {
-        m = experiments::measureGl(*env().renderer, s, setup);
+        m = measurement::measureGl(*env().renderer, s, setup);
         renderMs += m.render_ms, measureMs += m.measure_ms;
     }
     state.counters["render_ms"] = renderMs / double(state.iterations());    // draw + readback, all renders
@@ -87,17 +87,17 @@ BENCHMARK(BM_MeasureAutoFramed)
 
 void BM_Reference(benchmark::State& state) {
     const render::Scene s = ggx(60);
-    for (auto _ : state) benchmark::DoNotOptimize(experiments::measureReference(s, {}));
+    for (auto _ : state) benchmark::DoNotOptimize(measurement::measureReference(s, {}));
 }
 BENCHMARK(BM_Reference)->Unit(benchmark::kMillisecond);
 
 void BM_Tolerance(benchmark::State& state) {
     const render::Scene s = state.range(0) == 0 ? ggx(60) : ggx(80, 0.02);
-    experiments::ToleranceSetup t;
+    measurement::ToleranceSetup t;
     t.tolerance = 1e-3;
-    experiments::measureToTolerance(env().renderer.get(), s, t);  // warm-up
-    experiments::ToleranceResult r;
-    for (auto _ : state) r = experiments::measureToTolerance(env().renderer.get(), s, t);
+    measurement::measureToTolerance(env().renderer.get(), s, t);  // warm-up
+    measurement::ToleranceResult r;
+    for (auto _ : state) r = measurement::measureToTolerance(env().renderer.get(), s, t);
     state.counters["size"] = r.setup.width;
     state.counters["error_estimate"] = r.errorEstimate;
     state.SetLabel(state.range(0) == 0 ? "ggx 0.1 @60" : "ggx 0.02 @80");
@@ -173,7 +173,7 @@ BENCHMARK(BM_EffectSet)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRea
 // ---- Sweep throughput: configurations per second ----
 
 void BM_Sweep(benchmark::State& state) {
-    experiments::MeasureSetup setup;
+    measurement::MeasureSetup setup;
     setup.width = setup.height = int(state.range(0));
     const brdf::Model models[] = {brdf::Model::Phong, brdf::Model::Blinn, brdf::Model::Beckmann, brdf::Model::GGX};
     const double params[] = {1000, 395, 0.1, 0.1};
@@ -184,7 +184,7 @@ void BM_Sweep(benchmark::State& state) {
                 render::Scene s = ggx(inc);
                 s.brdf.model = models[mi];
                 (brdf::usesExponent(models[mi]) ? s.brdf.exponent : s.brdf.roughness) = params[mi];
-                benchmark::DoNotOptimize(experiments::measureGl(*env().renderer, s, setup));
+                benchmark::DoNotOptimize(measurement::measureGl(*env().renderer, s, setup));
                 ++configs;
             }
     state.counters["configs/s"] = benchmark::Counter(double(configs), benchmark::Counter::kIsRate);

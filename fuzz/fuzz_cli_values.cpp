@@ -1,7 +1,8 @@
-// libFuzzer target: the flag value parsers (--incidence lists and ranges, --size, --f0 ...).
+// libFuzzer target: the parameter value readers (--incidence lists and ranges, --size, --f0 ...), each
+// through the registry's check and scene::resolve, as a flag and a scene file give them.
 
-#include "cli/options.hpp"
 #include "core/error.hpp"
+#include "scene/resolve.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -10,20 +11,14 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace hilite;
     const std::string s(reinterpret_cast<const char*>(data), size);
-    try {
-        (void)cli::parseIncidence(s, true);
-    } catch (const InputError&) {
-    }
-    try {
-        int w = 0, h = 0;
-        cli::parseSize(s, w, h);
-    } catch (const InputError&) {
-    }
-    try {
-        cli::SceneFlags f;
-        f.f0 = s;
-        (void)cli::brdfParams(f);
-    } catch (const InputError&) {
+    for (const char* name : {"incidence", "size", "f0", "roughness", "eta", "bump_seed", "threshold"}) {
+        try {
+            scene::Values v;
+            v.set(name, s);
+            (void)scene::check(*scene::find(name), s);
+            (void)scene::resolve(v);
+        } catch (const InputError&) {
+        }
     }
     return 0;
 }

@@ -1,6 +1,6 @@
 // libFuzzer target: experiment files, parsed and expanded into validated configurations.
 
-#include "cli/experiment.hpp"
+#include "experiments/experiment.hpp"
 #include "core/error.hpp"
 
 #include <cstddef>
@@ -10,8 +10,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace hilite;
     try {
-        const cli::Experiment e =
-            cli::parseExperiment(std::string(reinterpret_cast<const char*>(data), size), "fuzz.toml");
+        const experiments::Experiment e =
+            experiments::parseExperiment(std::string(reinterpret_cast<const char*>(data), size), "fuzz.toml");
         double total = 1;
         for (const auto& a : e.axes) total *= double(a.values.size());
         if (total <= 2000) (void)e.configurations();  // validation of huge sweeps is slow, not wrong

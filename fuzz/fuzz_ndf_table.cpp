@@ -1,4 +1,4 @@
-// libFuzzer target: tabulated NDF files (issue 10). Any input must end in a normalized table or an InputError;
+// libFuzzer target: tabulated NDF files. Any input must end in a normalized table or an InputError;
 // a crash, a sanitizer report or another exception is a bug. The table read is evaluated once (D, Lambda).
 
 #include "brdf/ndf_table.hpp"

@@ -9,9 +9,10 @@
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "cli/commands.hpp"
-#include "experiments/strip.hpp"
-#include "cli/options.hpp"
+#include "cli/scene_flags.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
+#include "experiments/strip.hpp"
 #include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>
@@ -28,7 +29,7 @@ namespace hilite::cli {
 namespace {
 
 struct BrdfFlags {
-    SceneFlags scene;
+    SceneOptions scene;
     bool json = false;
     bool spectral = false;                              ///< fresnel, strip: --spectral
     std::string roughness = "0.02,0.05,0.1,0.2,0.5,1";  ///< normalization: the sweep
@@ -36,27 +37,16 @@ struct BrdfFlags {
     std::string png;  ///< strip: -o
 };
 
-/// Keeps only the named options of `app` (and --help): the scene flags a subcommand does not use go.
-void keepOnly(CLI::App& app, std::set<std::string> names) {
-    names.insert("--help");
-    for (CLI::Option* o : app.get_options()) {
-        bool keep = false;
-        for (const auto& l : o->get_lnames()) keep = keep || names.count("--" + l);
-        if (!keep) app.remove_option(o);
-    }
-}
-
 /// "0.1", "0.1,0.2" or START:STOP:STEP (inclusive), each value finite in [lo, hi].
 std::vector<double> parseList(const std::string& flag, const std::string& text, double lo, double hi) {
     auto number = [&](const std::string& t) {
-        size_t used = 0;
-        double v = 0;
-        try {
-            v = std::stod(t, &used);
-        } catch (...) {
-            used = 0;
-        }
-        if (used == 0 || used != t.size()) throw InputError(flag + ": '" + t + "' is not a number");
+        const auto v = parseNumber(t);
+        if (!v) throw InputError(flag + ": '" + t + "' is not a number");
+        return *v;
+    };
+    auto checkRange = [&](const std::string&, double v, double a, double b) {
+        if (!std::isfinite(v) || v < a || v > b)
+            throw InputError(flag + ": must be a finite number in [" + fmt(a) + ", " + fmt(b) + "] (got " + fmt(v) + ")");
         return v;
     };
     std::vector<std::string> parts;
@@ -115,36 +105,28 @@ std::string describeFresnel(const brdf::Params& p) {
 }
 
 /// The Fresnel of the flags: --spectral sets the mode; the mode must be one (not none).
-brdf::Params fresnelParams(BrdfFlags f) {
+scene::Resolved resolveBrdf(const BrdfFlags& f) { return scene::resolve(commandValues(f.scene), scene::Purpose::Brdf); }
+
+brdf::Params fresnelParams(const BrdfFlags& f) {
+    scene::Values v = commandValues(f.scene);
     if (f.spectral) {
-        if (!brdf::hasSpectralData(f.scene.material))
+        if (!brdf::hasSpectralData(v.text("material")))
             throw InputError("--spectral: measured spectra exist for --material copper and gold only");
-        if (!f.scene.fresnel.empty() && f.scene.fresnel != "spectral")
-            throw InputError("--spectral: conflicts with --fresnel " + f.scene.fresnel);
-        f.scene.fresnel = "spectral";
+        if (v.given("fresnel") && v.text("fresnel") != "spectral")
+            throw InputError("--spectral: conflicts with --fresnel " + v.text("fresnel"));
+        v.set("fresnel", "spectral", "--spectral");
     }
-    const brdf::Params p = brdfParams(f.scene);
+    const brdf::Params p = scene::resolve(v, scene::Purpose::Brdf).scene.brdf;
     if (p.fresnel == brdf::Fresnel::None)
         throw InputError("--fresnel: give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
     return p;
 }
 
-/// The quadrature of `albedo` resolves lobes down to kMinIntegrableRoughness; a mirror (roughness 0,
-/// which the renderer accepts) would integrate to a silent 0. Checked before brdfParams, so that its
-/// warnings about small roughness do not precede the error.
-void checkIntegrable(const SceneFlags& f) {
-    const auto model = brdf::parseModel(f.model);
-    if (!model || !brdf::isMicrofacet(*model) || brdf::usesExponent(*model)) return;
-    checkRange("--roughness", f.roughness, brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
-}
-
 int runAlbedo(const BrdfFlags& f) {
-    checkIntegrable(f.scene);
-    const brdf::Params p = brdfParams(f.scene);
-    if (p.anisotropic() && brdf::allowsAnisotropy(p.model))
-        checkRange("--roughness-y", p.alphaY(), brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
-    const auto thetas = parseIncidence(f.scene.incidence, true);
-    const double phi = checkRange("--azimuth", f.scene.azimuth, -360, 360);
+    const scene::Resolved r = resolveBrdf(f);
+    const brdf::Params& p = r.scene.brdf;
+    const auto& thetas = r.angles;
+    const double phi = r.scene.light.azimuthDeg;
     if (!f.json)
         std::cout << "# " << p << " azimuth=" << phi << "\n#    theta_deg    albedo_r    albedo_g    albedo_b\n";
     // The cosine-weighted average over every incidence (and azimuth): one number per channel, on every JSON
@@ -169,7 +151,7 @@ int runAlbedo(const BrdfFlags& f) {
 
 int runFresnel(const BrdfFlags& f) {
     const brdf::Params p = fresnelParams(f);
-    const auto thetas = parseIncidence(f.scene.incidence, true);
+    const auto thetas = resolveBrdf(f).angles;
     if (!f.json) std::cout << "# " << describeFresnel(p) << "\n#    theta_deg           r           g           b\n";
     printRgbRows(f, thetas, "rgb", [&](double t) {
         double c, s;
@@ -180,12 +162,14 @@ int runFresnel(const BrdfFlags& f) {
 }
 
 int runNormalization(const BrdfFlags& f) {
-    auto model = brdf::parseModel(f.scene.model);
+    const scene::Values given = commandValues(f.scene);
+    const std::string modelName = given.text("model");
+    auto model = brdf::parseModel(modelName);
     if (!model || !brdf::isMicrofacet(*model))
-        throw InputError("--model: normalization needs an NDF: blinn, gaussian, beckmann, ggx, tabulated (got '" +
-                         f.scene.model + "')");
-    if (*model == brdf::Model::Tabulated) {  // issue 10: the table, normalized when read, and the factor applied
-        const brdf::Params p = brdfParams(f.scene);
+        throw InputError(given.where("model") + ": normalization needs an NDF: blinn, gaussian, beckmann, ggx, "
+                                                "tabulated (got '" + modelName + "')");
+    if (*model == brdf::Model::Tabulated) {  // the table, normalized when read, and the factor applied
+        const brdf::Params p = resolveBrdf(f).scene.brdf;
         const double integral = brdf::ndfIntegral(p);
         nlohmann::ordered_json j{{"ndf_table", p.ndfTable->file}, {"normalization", p.ndfTable->normalization},
                                  {"integral", integral}};
@@ -200,11 +184,11 @@ int runNormalization(const BrdfFlags& f) {
     const auto values = exponent ? parseList("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent)
                                  : parseList("--roughness", f.roughness, brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
     if (!f.json)
-        std::cout << "# int D(h) (n.h) dw_h, model=" << f.scene.model << "\n#    roughness    exponent    integral\n";
+        std::cout << "# int D(h) (n.h) dw_h, model=" << modelName << "\n#    roughness    exponent    integral\n";
     for (double v : values) {
-        SceneFlags s = f.scene;
-        (exponent ? s.exponent : s.roughness) = v;
-        const brdf::Params p = brdfParams(s);
+        scene::Values s = given;
+        s.set(exponent ? "exponent" : "roughness", exactText(v), exponent ? "--exponent" : "--roughness");
+        const brdf::Params p = scene::resolve(s, scene::Purpose::Brdf).scene.brdf;
         const double integral = brdf::ndfIntegral(p);
         nlohmann::ordered_json j{{"roughness", nullptr}, {"exponent", nullptr}, {"integral", integral}};
         j[exponent ? "exponent" : "roughness"] = v;
@@ -219,8 +203,8 @@ int runNormalization(const BrdfFlags& f) {
 
 int runStrip(const BrdfFlags& f) {
     const brdf::Params p = fresnelParams(f);
-    int width = 0, height = 0;
-    parseSize(f.scene.size, width, height);
+    const scene::Resolved r = resolveBrdf(f);
+    const int width = r.setup.width, height = r.setup.height;
     if (f.png.empty()) throw InputError("-o: give the PNG to write");
     io::checkWritable(f.png, "-o");
     experiments::writeFresnelStrip(p, width, height, f.png);
@@ -229,20 +213,25 @@ int runStrip(const BrdfFlags& f) {
     return 0;
 }
 
-/// A subcommand's flags: the scene flags it uses (the rest removed), defaults of its own; the CPU uses
-/// the full 1 nm tables.
+/// A subcommand's flags: the registry parameters it reads, defaults of its own; the CPU uses the full 1 nm
+/// tables.
 std::shared_ptr<BrdfFlags> subcommandFlags(CLI::App& sub, const std::string& incidence, const std::string& size,
-                                           const std::set<std::string>& keep) {
+                                           std::function<bool(const scene::Param&)> keep) {
     auto f = std::make_shared<BrdfFlags>();
-    f->scene.spectralStepNm = brdf::kFullStepNm;
-    f->scene.incidence = incidence;
-    f->scene.size = size;
-    addSceneFlags(sub, f->scene, "angles theta_i in degrees: one, a list or START:STOP:STEP, each in [0, 90]");
-    keepOnly(sub, keep);
+    if (!incidence.empty()) f->scene.defaults["incidence"] = incidence;
+    if (!size.empty()) f->scene.defaults["size"] = size;
+    addParamFlags(sub, f->scene, keep);
     return f;
 }
 
-const std::set<std::string> kFresnelFlags{"--material", "--fresnel", "--eta", "--k", "--f0", "--incidence"};
+/// The parameters a Fresnel term reads, and those a whole BRDF does (its lobe, Fresnel and diffuse).
+bool fresnelParam(const scene::Param& p) {
+    return p.name == "material" || p.name == "fresnel" || p.name == "eta" || p.name == "k" || p.name == "f0";
+}
+bool brdfParam(const scene::Param& p) {
+    return p.table == scene::Table::Material && p.name != "brdf" && p.name != "param";
+}
+
 const char* kSpectralHelp = "spectral Fresnel of the material's measured eta, k (implied for copper, gold)";
 const char* kJsonHelp = "one JSON object per line instead of the table";
 
@@ -251,20 +240,22 @@ const char* kJsonHelp = "one JSON object per line instead of the table";
 Action addBrdf(CLI::App& app) {
     app.require_subcommand(1);
     CLI::App* albedo = app.add_subcommand("albedo", "directional-hemispherical reflectance vs theta_i (CPU, double)");
-    auto fa = subcommandFlags(
-        *albedo, "0:85:5", "",
-        {"--model", "--exponent", "--roughness", "--roughness-y", "--tangent-angle", "--fresnel", "--material", "--eta",
-         "--k", "--f0", "--geometry", "--diffuse", "--albedo", "--sigma", "--incidence", "--azimuth", "--ndf-table"});
+    auto fa = subcommandFlags(*albedo, "0:85:5", "", [](const scene::Param& p) {
+        return brdfParam(p) || p.name == "incidence" || p.name == "azimuth";
+    });
     albedo->add_flag("--json", fa->json, kJsonHelp);
     albedo->footer("A light at 90 degrees delivers nothing: albedo 0 there by the horizon convention.");
 
     CLI::App* fresnel = app.add_subcommand("fresnel", "Fresnel reflectance F vs theta_i, RGB or spectral");
-    auto ff = subcommandFlags(*fresnel, "0:90:5", "", kFresnelFlags);
+    auto ff = subcommandFlags(*fresnel, "0:90:5", "",
+                              [](const scene::Param& p) { return fresnelParam(p) || p.name == "incidence"; });
     fresnel->add_flag("--spectral", ff->spectral, kSpectralHelp);
     fresnel->add_flag("--json", ff->json, kJsonHelp);
 
     CLI::App* normalization = app.add_subcommand("normalization", "int D(h) (n.h) dw_h of an NDF (1 if normalized)");
-    auto fn = subcommandFlags(*normalization, "0", "", {"--model", "--roughness-y", "--tangent-angle", "--ndf-table"});
+    auto fn = subcommandFlags(*normalization, "0", "", [](const scene::Param& p) {
+        return p.name == "model" || p.name == "roughness_y" || p.name == "tangent_angle" || p.name == "ndf_table";
+    });
     normalization->add_option("--roughness", fn->roughness, "roughness values: list or START:STOP:STEP, in [1e-4, 10]")
         ->capture_default_str();
     normalization->add_option("--exponent", fn->exponent, "exponents (blinn): list or START:STOP:STEP, in [0, 1e8]")
@@ -272,7 +263,8 @@ Action addBrdf(CLI::App& app) {
     normalization->add_flag("--json", fn->json, kJsonHelp);
 
     CLI::App* strip = app.add_subcommand("strip", "PNG of a material's Fresnel colour, theta 0 (left) to 90 (right)");
-    auto fs = subcommandFlags(*strip, "0", "512x64", {"--material", "--fresnel", "--eta", "--k", "--f0", "--size"});
+    auto fs = subcommandFlags(*strip, "0", "512x64",
+                              [](const scene::Param& p) { return fresnelParam(p) || p.name == "size"; });
     strip->add_flag("--spectral", fs->spectral, kSpectralHelp);
     strip->add_option("-o,--output", fs->png, "PNG output (sRGB-encoded linear F)");
 

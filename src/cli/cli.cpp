@@ -1,7 +1,6 @@
 #include "cli/cli.hpp"
 
 #include "cli/commands.hpp"
-#include "cli/scene_file.hpp"
 #include "core/error.hpp"
 
 #include <algorithm>
@@ -16,7 +15,7 @@ int run(int argc, char** argv) {
                  "hilite"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "hilite 0.1.0");
-    // A scene file's values come first and the command line's flags later: the last one given wins.
+    // A flag given twice: the last one wins.
     app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     std::map<CLI::App*, Action> actions;
     auto add = [&](const char* name, const char* desc, Action (*fn)(CLI::App&)) {
@@ -30,10 +29,8 @@ int run(int argc, char** argv) {
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
     add("probe-shader", "", &addProbeShader);  // hidden: the child process of cli/shader_probe.cpp
-    std::map<std::string, std::string> origins;
     try {
         std::vector<std::string> args(argv + 1, argv + argc);
-        origins = expandSceneFile(args, app);
         std::reverse(args.begin(), args.end());  // CLI11 takes the vector last argument first
         app.parse(args);
     } catch (const CLI::CallForHelp& e) {
@@ -43,7 +40,7 @@ int run(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "hilite: " << withOrigin(e.what(), origins) << "\n";
+        std::cerr << "hilite: " << e.what() << "\n";
         return 2;
     } catch (const InputError& e) {
         std::cerr << "hilite: " << e.what() << "\n";
@@ -53,7 +50,7 @@ int run(int argc, char** argv) {
         for (auto& [sub, action] : actions)
             if (sub->parsed()) return action();
     } catch (const InputError& e) {
-        std::cerr << "hilite: " << withOrigin(e.what(), origins) << "\n";
+        std::cerr << "hilite: " << e.what() << "\n";
         return 2;
     } catch (const SystemError& e) {
         std::cerr << "hilite: " << e.what() << "\n";

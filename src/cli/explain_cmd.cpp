@@ -1,12 +1,14 @@
 // `hilite explain`: what a scene resolves to (every default filled in, as a scene file), the effects it
-// runs, and the GLSL it compiles. Nothing is rendered.
+// runs, and the GLSL it compiles; `--part flags` prints the parameter registry as the README's table.
+// Nothing is rendered.
 
 #include "cli/commands.hpp"
-#include "cli/measure_cmd.hpp"
-#include "cli/scene_file.hpp"
+#include "cli/scene_flags.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 #include "gl/program.hpp"
 #include "render/renderer.hpp"
+#include "render/shader_source.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -18,55 +20,67 @@ namespace hilite::cli {
 namespace {
 
 struct ExplainFlags {
-    MeasureFlags measure;
+    SceneOptions scene;
     std::string part = "all";
 };
 
-bool isNumber(const std::string& v) {
-    char* end = nullptr;
-    std::strtod(v.c_str(), &end);
-    return !v.empty() && end == v.c_str() + v.size();
+std::string quoted(const std::string& v) {
+    std::string q = "\"";
+    for (char c : v) q += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    return q + "\"";
 }
 
-/// The resolved flags as a scene file: one table per section, every key with its value or default.
-void printScene(const CLI::App& app, std::ostream& os) {
-    std::map<std::string, std::vector<std::string>> sections;
-    for (const CLI::Option* o : app.get_options()) {
-        const std::string section = sectionOf(*o);
-        if (section.empty() || section == "output" || o->get_lnames().empty()) continue;
-        std::string key = o->get_lnames().front();
-        if (key == "reference" || key == "gl-backend") continue;
-        std::replace(key.begin(), key.end(), '-', '_');
-        if (o->get_multi_option_policy() == CLI::MultiOptionPolicy::TakeAll && o->count() > 0) {  // --param: all, in order
-            std::string list;
-            for (const std::string& v : o->results()) list += (list.empty() ? "\"" : ", \"") + v + "\"";
-            sections[section].push_back(key + " = [" + list + "]");
-            continue;
-        }
-        std::string v = o->count() ? o->results().back() : o->get_default_str();
-        // A file a scene names is found beside the scene file: written absolute, the output works anywhere.
-        if ((key == "brdf" || key == "ndf_table") && !v.empty()) v = std::filesystem::absolute(v).lexically_normal();
-        if (v.empty()) {
-            sections[section].push_back("# " + key + " = (not set: " + o->get_description() + ")");
-            continue;
-        }
-        const bool quote = !isNumber(v) && v != "true" && v != "false";
-        sections[section].push_back(key + " = " + (quote ? "\"" + v + "\"" : v));
+/// A value as TOML: numbers and booleans bare, lists of numbers as arrays, everything else a string.
+std::string tomlValue(const scene::Param& p, const std::string& v) {
+    if (p.kind == scene::Kind::Switch) return v;
+    if (p.kind == scene::Kind::Number || p.kind == scene::Kind::Integer) return v;
+    if (p.kind == scene::Kind::Rgb) {
+        const auto parts = split(v, ',');
+        return parts.size() == 1 ? v : "[" + join(parts) + "]";
     }
-    for (const char* s : {"material", "light", "camera", "measurement", "surface"}) {
-        os << "[" << s << "]\n";
-        for (const auto& line : sections[s]) os << line << "\n";
+    if (parseNumber(v)) return v;
+    return quoted(v);
+}
+
+/// The resolved values as a scene file: one table each, every key with its value or default.
+void printScene(const scene::Resolved& r, std::ostream& os) {
+    for (scene::Table t : scene::tables()) {
+        os << "[" << toString(t) << "]\n";
+        for (const scene::Param& p : scene::registry()) {
+            if (p.table != t) continue;
+            if (p.kind == scene::Kind::List) {
+                const auto& list = r.values.list(p.name);
+                if (list.empty()) {
+                    os << "# " << p.name << " = (not set: " << p.help << ")\n";
+                    continue;
+                }
+                std::vector<std::string> items;
+                for (const auto& a : list) items.push_back(quoted(a.text));
+                os << p.name << " = [" << join(items) << "]\n";
+                continue;
+            }
+            std::string v = r.values.text(p.name);
+            if (v.empty()) {
+                os << "# " << p.name << " = (not set: " << p.help << ")\n";
+                continue;
+            }
+            // A file a scene names is found beside the scene file: written absolute, the output works anywhere.
+            if (p.kind == scene::Kind::Path) v = std::filesystem::absolute(v).lexically_normal();
+            os << p.name << " = " << tomlValue(p, v) << "\n";
+        }
         os << "\n";
     }
 }
 
-int runExplain(const ExplainFlags& f, const CLI::App& app) {
-    if (f.part != "all" && f.part != "scene" && f.part != "effects" && f.part != "glsl")
-        throw InputError("--part: unknown '" + f.part + "' (allowed: all, scene, effects, glsl)");
-    const ResolvedMeasure r = resolveMeasure(f.measure);  // validates everything, as measure would
+int runExplain(const ExplainFlags& f) {
+    if (f.part == "flags") {
+        std::cout << scene::markdownTable();
+        return 0;
+    }
+    const scene::Resolved r = scene::resolve(commandValues(f.scene));  // validates everything, as measure would
     const bool all = f.part == "all";
     if (all) std::cout << "# hilite explain: the resolved scene, every default filled in (a valid scene file)\n";
-    if (all || f.part == "scene") printScene(app, std::cout);
+    if (all || f.part == "scene") printScene(r, std::cout);
     if (all) std::cout << "# Active effects: the program and the CPU twin evaluate exactly these terms\n";
     if (all || f.part == "effects")
         for (const auto& e : render::activeEffects(r.scene)) std::cout << (all ? "#   " : "") << e << "\n";
@@ -82,11 +96,12 @@ int runExplain(const ExplainFlags& f, const CLI::App& app) {
 
 Action addExplain(CLI::App& app) {
     auto f = std::make_shared<ExplainFlags>();
-    addMeasureFlags(app, f->measure);
-    app.add_option("--part", f->part, "all | scene | effects | glsl")->capture_default_str();
+    addParamFlags(app, f->scene);
+    app.add_option("--part", f->part, "all | scene | effects | glsl | flags (the parameter registry as a markdown table)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"all", "scene", "effects", "glsl", "flags"}));
     app.footer("Example: hilite explain --model ggx --fresnel schlick --f0 0.04 --geometry smith --part effects");
-    CLI::App* self = &app;
-    return [f, self] { return runExplain(*f, *self); };
+    return [f] { return runExplain(*f); };
 }
 
 }  // namespace hilite::cli

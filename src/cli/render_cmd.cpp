@@ -1,12 +1,13 @@
 // `hilite render`: one image of the plane, as a PNG for people and/or a PFM of the exact floats.
 
 #include "cli/commands.hpp"
-#include "cli/options.hpp"
-#include "cli/scene_file.hpp"
-#include "cli/shader_probe.hpp"
+#include "cli/scene_flags.hpp"
 #include "core/error.hpp"
 #include "io/image_io.hpp"
+#include "measurement/shader_probe.hpp"
 #include "render/renderer.hpp"
+
+#include "core/text.hpp"
 
 #include <iostream>
 #include <memory>
@@ -16,20 +17,14 @@ namespace hilite::cli {
 namespace {
 
 struct RenderFlags {
-    SceneFlags scene;
+    SceneOptions scene;
     std::string png, pfm, exposure = "auto";
 };
 
 double parseExposure(const std::string& s, const ImageF& img) {
     if (s == "auto") return 0.0;
-    try {
-        size_t used = 0;
-        const double ev = std::stod(s, &used);
-        if (used == s.size()) return checkRange("--exposure", ev, -64, 64);
-    } catch (const InputError&) {
-        throw;
-    } catch (...) {
-    }
+    const auto ev = parseNumber(s);
+    if (ev && *ev >= -64 && *ev <= 64) return *ev;
     (void)img;
     throw InputError("--exposure: 'auto' or stops EV in [-64, 64] (got '" + s + "')");
 }
@@ -42,13 +37,12 @@ double peakOf(const ImageF& img) {
 }
 
 int runRender(const RenderFlags& f) {
-    render::Scene scene = sceneOf(f.scene);
-    scene.light.incidenceDeg = parseIncidence(f.scene.incidence, false).front();
-    int width = 0, height = 0;
-    parseSize(f.scene.size, width, height);
-    checkRange("--fov", f.scene.fov, 0, 179);
-    const View view = parseView(f.scene.view);
-    const PinholeCamera camera = viewCamera(f.scene, view, scene, width, height);
+    const scene::Resolved r = scene::resolve(commandValues(f.scene), scene::Purpose::Render);
+    const render::Scene& scene = r.scene;
+    if (r.angles.size() > 1)
+        throw InputError(r.values.where("incidence") + ": render takes one angle (got '" + r.values.text("incidence") + "')");
+    const int width = r.setup.width, height = r.setup.height;
+    const PinholeCamera camera = scene::viewCamera(r, r.view, width, height);
     if (f.png.empty() && f.pfm.empty()) throw InputError("-o/--float: give at least one output file");
     if (!f.png.empty()) io::checkWritable(f.png, "-o");
     if (!f.pfm.empty()) io::checkWritable(f.pfm, "--float");
@@ -57,10 +51,10 @@ int runRender(const RenderFlags& f) {
 
     if (scene.brdfFile)
         for (const std::string& note : scene.brdfFile->notes) std::cerr << "hilite: note: " << note << "\n";
-    probeShader(scene, f.scene.backend, f.scene.shaderTimeout);  // a .brdf runs in a child first, time-limited
-    gl::Context context(parseBackendFlag(f.scene.backend));
+    measurement::probeShader(scene, r.backend, r.shaderTimeoutS);  // a .brdf runs in a child first, time-limited
+    gl::Context context(scene::backendOf(r));
     render::Renderer renderer(context);
-    renderer.setShaderTimeLimit(f.scene.shaderTimeout);
+    renderer.setShaderTimeLimit(r.shaderTimeoutS);
     const ImageF img = renderer.render(scene, camera, render::Output::Color);
     const double peak = peakOf(img);
     if (!f.png.empty()) {
@@ -70,7 +64,7 @@ int runRender(const RenderFlags& f) {
         io::writePng(f.png, img, e);
     }
     if (!f.pfm.empty()) io::writePfm(f.pfm, img);
-    std::cout << "rendered " << width << "x" << height << " " << f.scene.view << " view: " << scene
+    std::cout << "rendered " << width << "x" << height << " " << (r.view == scene::View::Photo ? "photo" : "measure") << " view: " << scene
               << " peak=" << peak << " [" << context.info().renderer << ", " << gl::toString(context.info().backend)
               << "]\n";
     return 0;
@@ -80,14 +74,12 @@ int runRender(const RenderFlags& f) {
 
 Action addRender(CLI::App& app) {
     auto f = std::make_shared<RenderFlags>();
-    f->scene.size = "512";
-    addSceneFlags(app, f->scene, "angle of incidence theta_i in degrees, [0, 90]");
-    app.add_option("--fov", f->scene.fov, "field of view across the width in degrees, (0, 179]; default 30 (measure), 40 (photo)");
-    app.add_option("-o,--output", f->png, "PNG output (sRGB-encoded)");
-    app.add_option("--float", f->pfm, "float dump (PFM, exact RGB radiance)");
+    addParamFlags(app, f->scene, [](const scene::Param& p) { return p.table != scene::Table::Measurement; });
+    app.add_option("-o,--output", f->png, "PNG output (sRGB-encoded)")->group("Output");
+    app.add_option("--float", f->pfm, "float dump (PFM, exact RGB radiance)")->group("Output");
     app.add_option("--exposure", f->exposure, "PNG exposure: auto (peak = white) or stops EV (radiance x 2^EV)")
-        ->capture_default_str();
-    assignSections(app, 0);
+        ->capture_default_str()
+        ->group("Output");
     app.footer("Example: hilite render --model ggx --roughness 0.1 --incidence 60 --view photo -o ggx60.png");
     return [f] { return runRender(*f); };
 }

@@ -4,7 +4,7 @@
 // joins them into what a single run writes.
 
 #include "cli/commands.hpp"
-#include "cli/experiment.hpp"
+#include "experiments/experiment.hpp"
 #include "core/error.hpp"
 #include "experiments/results.hpp"
 
@@ -21,6 +21,8 @@ namespace hilite::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using experiments::Experiment;
+using experiments::ExperimentRunner;
 
 struct RunFlags {
     std::string experiment, out, shard;
@@ -47,7 +49,7 @@ void progress(size_t done, size_t total, double seconds) {
 int runExperiment(const RunFlags& f) {
     int shardK = 1, shardN = 1;
     parseShard(f.shard, shardK, shardN);
-    const Experiment exp = loadExperiment(findExperiment(f.experiment));
+    const Experiment exp = experiments::loadExperiment(experiments::findExperiment(f.experiment));
     const std::string dir = f.out.empty() ? "results/" + exp.name : f.out;
     const auto configs = exp.configurations();  // validates every configuration before anything runs
     ExperimentRunner runner(exp, f.backend);
@@ -55,7 +57,7 @@ int runExperiment(const RunFlags& f) {
     fs::create_directories(dir);  // only now: bad input leaves not even an empty folder behind
     if (access(dir.c_str(), W_OK) != 0) throw InputError("-o: cannot write to '" + dir + "'");
     experiments::ResultsWriter writer(dir, runner.columns(), f.resume);
-    writeExperimentCopy(exp, dir);
+    experiments::writeExperimentCopy(exp, dir);
     size_t todo = 0;
     for (const auto& c : configs) todo += (c.index % shardN == shardK - 1 && !writer.done().count(c.index));
     const auto t0 = std::chrono::steady_clock::now();
@@ -93,7 +95,7 @@ int runMerge(const MergeFlags& f) {
         if (experimentFile.empty()) experimentFile = copy;
         for (auto& r : experiments::readRows(s + "/results.jsonl")) rows.push_back(std::move(r));
     }
-    const Experiment exp = loadExperimentCopy(experimentFile.substr(0, experimentFile.rfind('/')));
+    const Experiment exp = experiments::loadExperimentCopy(experimentFile.substr(0, experimentFile.rfind('/')));
     std::set<long> seen;
     for (const auto& r : rows)
         if (!seen.insert(r["config"].get<long>()).second)
@@ -101,7 +103,7 @@ int runMerge(const MergeFlags& f) {
     fs::create_directories(f.out);
     ExperimentRunner runner(exp, f.backend);
     experiments::ResultsWriter::writeAll(f.out, runner.columns(), rows);
-    writeExperimentCopy(exp, f.out);
+    experiments::writeExperimentCopy(exp, f.out);
     const size_t expected = exp.configurations().size();
     runner.finalize(f.out, experiments::readRows(f.out + "/results.jsonl"), -1);
     std::cout << "merged " << rows.size() << " of " << expected << " rows from " << f.shards.size() << " shards -> "

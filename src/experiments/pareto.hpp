@@ -1,5 +1,5 @@
 #pragma once
-// Error against time (issue 7): the rows of an experiment grouped into settings, each setting's worst
+// Error against time: the rows of an experiment grouped into settings, each setting's worst
 // error over its rows against its mean time, the Pareto front (no other setting is both faster and more
 // accurate), a log-log plot and the summary's table.
 

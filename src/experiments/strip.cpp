@@ -3,6 +3,10 @@
 #include "brdf/evaluate.hpp"
 #include "core/image.hpp"
 #include "io/image_io.hpp"
+#include "io/label.hpp"
+
+#include <algorithm>
+#include <cmath>
 
 namespace hilite::experiments {
 
@@ -16,12 +20,25 @@ dvec3 fresnelAt(const brdf::Params& p, double thetaDeg) {
 
 }  // namespace
 
-void writeFresnelStrip(const brdf::Params& p, int width, int height, const std::string& path) {
-    ImageF img(width, height, 3);
+void writeFresnelStrip(const brdf::Params& p, int width, int height, const std::string& path,
+                       const std::string& label) {
+    const int scale = 1, band = label.empty() ? 0 : 2 * io::textHeight(scale) + 6;
+    ImageF img(width, height + band, 3);
     for (int x = 0; x < width; ++x) {  // normal incidence on the left, grazing on the right
         const dvec3 F = fresnelAt(p, 90.0 * (x + 0.5) / width);
-        for (int y = 0; y < height; ++y)
+        for (int y = band; y < band + height; ++y)
             for (int ch = 0; ch < 3; ++ch) img.pixel(x, y)[ch] = float(F[ch]);
+    }
+    if (band > 0) {
+        for (int t = 0; t <= 90; t += 15) {
+            const int x = std::min(width - 1, int(std::lround(double(t) / 90.0 * width)));
+            for (int y = band - 4; y < band; ++y) img.pixel(x, y)[0] = img.pixel(x, y)[1] = img.pixel(x, y)[2] = 1.0f;
+            const std::string tick = std::to_string(t) + (t == 90 ? " deg" : "");
+            io::drawText(img, std::clamp(x - io::textWidth(tick, scale) / 2, 0, width - io::textWidth(tick, scale)),
+                         height + 5, tick, scale);
+        }
+        io::drawText(img, 2, height + 5 + io::textHeight(scale), label + ": F(theta), theta_i 0 (left) to 90 (right)",
+                     scale);
     }
     io::writePng(path, img, io::Exposure{});
 }

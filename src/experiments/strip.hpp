@@ -9,7 +9,9 @@
 namespace hilite::experiments {
 
 /// Writes the strip as a PNG (atomically). width x height pixels, column x at theta = 90 (x + 0.5) / width.
-void writeFresnelStrip(const brdf::Params& p, int width, int height, const std::string& path);
+/// With a `label`, a band below the strip names it and marks theta every 15 degrees.
+void writeFresnelStrip(const brdf::Params& p, int width, int height, const std::string& path,
+                       const std::string& label = "");
 
 struct StripStats {
     dvec3 normal;              ///< F at 0 degrees

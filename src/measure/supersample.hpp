@@ -1,5 +1,5 @@
 #pragma once
-// Supersampling of the measurement view by jittered renders (issue 7): the same frame rendered n x n
+// Supersampling of the measurement view by jittered renders: the same frame rendered n x n
 // times, each time with every pixel's sample point moved by one offset of an n x n grid of sub-pixel
 // cell centres (the shader's uJitter), combined per pixel:
 //   - the threshold is T = frac * (largest L over all n^2 samples of all pixels), so the peak is found

@@ -1,5 +1,5 @@
 #pragma once
-// The moments prefilter of the bump render (issue 10): the CPU double twin of the BumpMoments block of
+// The moments prefilter of the bump render: the CPU double twin of the BumpMoments block of
 // shaders/micro.glsl (LEAN mapping, Olano & Baker 2010), the mirror-facet Jacobian it shares with the
 // supersampled patches, and the choice between the two (BumpFilter).
 

@@ -1,5 +1,5 @@
 #pragma once
-// The explicit micro-geometry render (issue 10): GL resources and uniforms of the bump field, and the CPU
+// The explicit micro-geometry render: GL resources and uniforms of the bump field, and the CPU
 // double twin of the shader's bumpRadiance(). See shaders/micro.glsl (BumpGlint) for the physics.
 
 #include "core/camera.hpp"

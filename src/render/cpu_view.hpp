@@ -2,7 +2,7 @@
 // The measurement view rendered on the CPU by the double-precision twin: for every pixel, the exitant
 // direction of its camera ray, render::surfaceRadiance (brdf::evaluate in double) and the chart
 // coordinates, exactly the channels shaders/shade.frag writes for Output::Measure. The GL path's
-// float shader against this path is one of the accuracy knobs (issue 7); both feed measure::measureImage.
+// float shader against this path is one of the accuracy knobs; both feed measure::measureImage.
 
 #include "core/camera.hpp"
 #include "core/image.hpp"

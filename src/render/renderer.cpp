@@ -61,7 +61,7 @@ std::vector<std::string> activeEffects(const Scene& scene) {
     out.push_back(scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
                                                        : "directional light (E cos)");
     if (scene.surface.bumps) out.push_back(bumpEffect(scene));
-    if (scene.brdf.model == brdf::Model::Tabulated && scene.brdf.ndfTable) {  // issue 10: what the table became
+    if (scene.brdf.model == brdf::Model::Tabulated && scene.brdf.ndfTable) {  // What the table became
         const brdf::NdfTable& t = *scene.brdf.ndfTable;
         std::ostringstream s;
         s << "tabulated NDF " << t.file << ": " << t.theta.size() << " rows, normalized by x" << t.normalization
@@ -231,7 +231,7 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
     if (prog.uniform("uExponent") >= 0) prog.set("uExponent", float(b.exponent));
     if (prog.uniform("uRoughness") >= 0) prog.set("uRoughness", float(b.roughness));
     if (prog.uniform("uF0") >= 0) set3(prog, "uF0", b.f0);
-    // terms of issue 4: anisotropy, Gaussian k_G, eta, k, spectral arrays, diffuse (render::termUniforms)
+    // terms of anisotropy, Gaussian k_G, eta, k, spectral arrays, diffuse (render::termUniforms)
     for (const TermUniform& u : termUniforms(b)) {
         const int loc = prog.uniform(u.name.c_str());
         if (loc < 0) continue;  // term switched out of this program

@@ -78,7 +78,7 @@ private:
     gl::Framebuffer* m_drawn = nullptr;  ///< the framebuffer of the last draw()
     PixelRect m_drawnCrop;               ///< and what of it was drawn
     unsigned int m_vao = 0, m_vbo = 0;
-    std::unique_ptr<class BumpTextures> m_bumpTextures;  ///< issue 10: the bump fields' textures
+    std::unique_ptr<class BumpTextures> m_bumpTextures;  ///< the bump fields' textures
     double m_shaderTimeLimit = 0;
     Watchdog m_watchdog;
 };

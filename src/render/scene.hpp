@@ -54,7 +54,7 @@ struct Scene {
     /// Distance of the eye (the measurement camera) from the origin, on the mirror direction. Only a
     /// point light makes the image depend on it: a distant light's radiance depends on direction alone.
     double eyeDistance = 10.0;
-    Surface surface;  ///< flat, or explicit micro-geometry (issue 10)
+    Surface surface;  ///< flat, or explicit micro-geometry
 };
 
 std::ostream& operator<<(std::ostream&, const Scene&);

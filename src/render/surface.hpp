@@ -1,5 +1,5 @@
 #pragma once
-// The plane's surface (issue 10): flat (the BRDF is evaluated directly) or an explicit bump field of mirror
+// The plane's surface: flat (the BRDF is evaluated directly) or an explicit bump field of mirror
 // facets whose slopes realise the material's NDF (micro/bump_field.hpp), lit by a soft sun.
 
 #include "micro/bump_field.hpp"

@@ -132,7 +132,7 @@ TEST_CASE("cli::measure roughness policy: 0 is a mirror, (0, 1e-7) is raised wit
     }
 }
 
-TEST_CASE("cli::measure says what a highlight is framed about (issue 10: retroreflection)") {
+TEST_CASE("cli::measure says what a highlight is framed about (retroreflection)") {
     const auto r = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64 --json", true);
     CHECK(r.code == 0);
     CHECK(r.out.find("\"framed_about\":\"peak (retroreflection: toward the light, 2 theta_i = 120 deg") !=

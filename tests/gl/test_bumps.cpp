@@ -1,7 +1,7 @@
 // The explicit micro-geometry render: GL pixels against the double twin, and the highlight of many small
 // bumps approaching the analytic BRDF with the same NDF.
 
-#include "experiments/measure_bumps.hpp"
+#include "measurement/measure_bumps.hpp"
 #include "render/bumps.hpp"
 
 #include "gl/gl_fixture.hpp"
@@ -64,7 +64,7 @@ TEST_CASE("render::bumpPixelRadiance twin matches the GL bump render") {
     s.surface.samples = 2;
     s.brdf.fresnel = brdf::Fresnel::Schlick;
     s.brdf.f0 = {0.9, 0.6, 0.3};
-    const PinholeCamera cam = experiments::measurementCamera(s, s.light.chart().wr(), 25.0, 40, 40);
+    const PinholeCamera cam = measurement::measurementCamera(s, s.light.chart().wr(), 25.0, 40, 40);
     const TwinComparison r = compareWithBumpTwin(s, cam, 1);
     const int compared = r.compared;
     const double maxErr = r.maxErr;
@@ -79,7 +79,7 @@ TEST_CASE("render::bumpPixelRadiance: the moments prefilter's twin matches GL") 
         s.surface.filter = render::BumpFilter::Moments;
         s.brdf.fresnel = brdf::Fresnel::Schlick;
         s.brdf.f0 = {0.9, 0.6, 0.3};
-        const PinholeCamera cam = experiments::measurementCamera(s, s.light.chart().wr(), 30.0, 32, 32);
+        const PinholeCamera cam = measurement::measurementCamera(s, s.light.chart().wr(), 30.0, 32, 32);
         const TwinComparison r = compareWithBumpTwin(s, cam, 3);
         const int compared = r.compared;
         const double maxErr = r.maxErr;
@@ -90,18 +90,18 @@ TEST_CASE("render::bumpPixelRadiance: the moments prefilter's twin matches GL") 
     }
 }
 
-TEST_CASE("experiments::measureBumps: glints at large periods, the analytic highlight's shape as bumps shrink") {
-    experiments::MeasureSetup setup;
+TEST_CASE("measurement::measureBumps: glints at large periods, the analytic highlight's shape as bumps shrink") {
+    measurement::MeasureSetup setup;
     setup.width = setup.height = 64;
     auto& renderer = *test::glEnv().renderer;
-    const auto big = experiments::measureBumps(renderer, bumpScene(60, 32), setup);
+    const auto big = measurement::measureBumps(renderer, bumpScene(60, 32), setup);
     // 32 px bumps: the half-maximum region is a glint or two, a few pixels (no highlight of the BRDF's shape).
     CHECK(big.shape.region_pixels < 10);
     // Half-pixel bumps, supersampled: speckle (the brightest glint sets the threshold, so the region is no
     // measure), but unbiased: the frame's mean radiance is the prefiltered one's to within the speckle.
     render::Scene half = bumpScene(60, 0.5);
     half.surface.filter = render::BumpFilter::Supersample;
-    const PinholeCamera cam = experiments::measurementCamera(half, half.light.chart().wr(), 30.0, 64, 64);
+    const PinholeCamera cam = measurement::measurementCamera(half, half.light.chart().wr(), 30.0, 64, 64);
     const ImageF ss = renderer.render(half, cam, render::Output::Measure);
     half.surface.filter = render::BumpFilter::Moments;
     const ImageF mom = renderer.render(half, cam, render::Output::Measure);
@@ -116,8 +116,8 @@ TEST_CASE("experiments::measureBumps: glints at large periods, the analytic high
         render::Scene tiny = bumpScene(inc, 1.0 / 128);
         tiny.surface.texels = 1024;
         tiny.surface.bumpsPerTile = 64;
-        const auto m = experiments::measureBumps(renderer, tiny, setup);
-        const auto a = experiments::measureReference(experiments::analyticScene(tiny), setup.options);
+        const auto m = measurement::measureBumps(renderer, tiny, setup);
+        const auto a = measurement::measureReference(measurement::analyticScene(tiny), setup.options);
         CAPTURE(inc);
         CHECK(std::abs(m.shape.aspect - a.shape.aspect) < 0.02);
         CHECK(std::abs(m.shape.major_deg / a.shape.major_deg - 1) < 0.05);

@@ -1,7 +1,7 @@
-// The tabulated NDF in GL (issue 10): a table sampled from GGX measures like GGX.
+// The tabulated NDF in GL: a table sampled from GGX measures like GGX.
 
 #include "brdf/ndf_tables.hpp"
-#include "experiments/measure_scene.hpp"
+#include "measurement/measure_scene.hpp"
 
 #include "gl/gl_fixture.hpp"
 
@@ -11,8 +11,8 @@
 
 using namespace hilite;
 
-TEST_CASE("experiments::measureGl a table sampled from GGX measures like GGX") {
-    experiments::MeasureSetup setup;
+TEST_CASE("measurement::measureGl a table sampled from GGX measures like GGX") {
+    measurement::MeasureSetup setup;
     setup.width = setup.height = 128;
     auto& renderer = *test::glEnv().renderer;
     for (double alpha : {0.1, 0.3}) {
@@ -24,7 +24,7 @@ TEST_CASE("experiments::measureGl a table sampled from GGX measures like GGX") {
         tab.brdf.ndfTable = brdf::parseNdfTable(test::ggxTableText(alpha), "ggx.csv");
         for (double inc : {0.0, 30.0, 60.0, 75.0}) {
             ggx.light.incidenceDeg = tab.light.incidenceDeg = inc;
-            const auto a = experiments::measureGl(renderer, ggx, setup), b = experiments::measureGl(renderer, tab, setup);
+            const auto a = measurement::measureGl(renderer, ggx, setup), b = measurement::measureGl(renderer, tab, setup);
             CAPTURE(alpha);
             CAPTURE(inc);
             CHECK(std::abs(a.shape.aspect - b.shape.aspect) < 0.005);

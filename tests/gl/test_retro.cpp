@@ -1,9 +1,9 @@
-// Retroreflection (issue 10): a lobe about the light direction, 2 theta_i from the mirror direction. The
+// Retroreflection: a lobe about the light direction, 2 theta_i from the mirror direction. The
 // automatic framing finds its peak and measures the highlight about it; ordinary lobes stay about the mirror.
 
-#include "experiments/measure_scene.hpp"
+#include "measurement/measure_scene.hpp"
 #include "brdf/ndf_table.hpp"
-#include "experiments/peak_frame.hpp"
+#include "measurement/peak_frame.hpp"
 
 #include "gl/gl_fixture.hpp"
 #include "support/scenes.hpp"
@@ -17,8 +17,8 @@ using namespace hilite;
 namespace {
 
 /// The shared test scene (support/scenes.hpp) with the light at azimuth 25 deg.
-render::Scene scene(brdf::Model m, double param, double incidence) {
-    render::Scene s = test::scene(m, param, incidence);
+render::Scene makeScene(brdf::Model m, double param, double incidence) {
+    render::Scene s = test::makeScene(m, param, incidence);
     s.light.azimuthDeg = 25.0;
     return s;
 }
@@ -29,69 +29,69 @@ double angleDeg(const dvec3& a, const dvec3& b) {
 
 }  // namespace
 
-TEST_CASE("experiments::findPeak and frameAboutPeak") {
+TEST_CASE("measurement::findPeak and frameAboutPeak") {
     SUBCASE("retroreflection: the peak is the light direction; framed about it beyond a lobe width from the mirror") {
         for (double inc : {10.5, 30.0, 60.0, 75.0}) {
-            const render::Scene s = scene(brdf::Model::Retro, 1000, inc);
-            const auto p = experiments::findPeak(s);
+            const render::Scene s = makeScene(brdf::Model::Retro, 1000, inc);
+            const auto p = measurement::findPeak(s);
             CAPTURE(inc);
             CHECK(angleDeg(p.direction, s.light.direction()) < 1e-6);
             CHECK(p.offsetDeg == doctest::Approx(2 * inc).epsilon(1e-9));
-            const auto framed = experiments::frameAboutPeak(s, 0.5);
+            const auto framed = measurement::frameAboutPeak(s, 0.5);
             REQUIRE(framed);
             CHECK(angleDeg(framed->light.chart().wr(), s.light.direction()) < 1e-6);
             CHECK(angleDeg(framed->light.direction(), s.light.direction()) == 0.0);  // the light itself stays
             double offset = 0;
-            CHECK(experiments::framedAbout(s, 0.5, offset).find("retroreflection") != std::string::npos);
+            CHECK(measurement::framedAbout(s, 0.5, offset).find("retroreflection") != std::string::npos);
             CHECK(offset == doctest::Approx(2 * inc).epsilon(1e-9));
         }
         // At 0.5 deg the peak (1 deg from the mirror) is inside a lobe of half-width 2.13 deg about the mirror
         // direction, at normal incidence the two coincide, and up to 20 deg away (theta_i = 10) the chart about
         // the mirror direction measures the lobe with less than 2% stretch: nothing to reframe.
-        CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Retro, 1000, 0.5), 0.5));
-        CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Retro, 1000, 0.0), 0.5));
-        CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Retro, 1000, 9.5), 0.5));
+        CHECK_FALSE(measurement::frameAboutPeak(makeScene(brdf::Model::Retro, 1000, 0.5), 0.5));
+        CHECK_FALSE(measurement::frameAboutPeak(makeScene(brdf::Model::Retro, 1000, 0.0), 0.5));
+        CHECK_FALSE(measurement::frameAboutPeak(makeScene(brdf::Model::Retro, 1000, 9.5), 0.5));
     }
     SUBCASE("lobes about the mirror direction stay there, off-specular shifts included") {
-        render::Scene g = scene(brdf::Model::GGX, 0.3, 70);
+        render::Scene g = makeScene(brdf::Model::GGX, 0.3, 70);
         g.brdf.geometry = brdf::Geometry::Smith;
-        const auto p = experiments::findPeak(g);
+        const auto p = measurement::findPeak(g);
         CHECK(p.offsetDeg > 1.0);  // the off-specular peak ...
-        CHECK_FALSE(experiments::frameAboutPeak(g, 0.5));  // ... with the mirror direction still in the region
+        CHECK_FALSE(measurement::frameAboutPeak(g, 0.5));  // ... with the mirror direction still in the region
         double offset = 1;
-        CHECK(experiments::framedAbout(g, 0.5, offset) == "mirror direction");
+        CHECK(measurement::framedAbout(g, 0.5, offset) == "mirror direction");
         CHECK(offset == 0.0);
-        CHECK_FALSE(experiments::frameAboutPeak(scene(brdf::Model::Phong, 1000, 60), 0.5));
+        CHECK_FALSE(measurement::frameAboutPeak(makeScene(brdf::Model::Phong, 1000, 60), 0.5));
         // The shipped hand-painted NDF at 80 deg with Smith G and Schlick F: the peak moves 10 deg toward grazing
         // and the mirror direction drops out of the half-maximum region, yet the peak is near: measured about wr.
-        render::Scene h = scene(brdf::Model::Tabulated, 0.1, 80);
+        render::Scene h = makeScene(brdf::Model::Tabulated, 0.1, 80);
         h.brdf.ndfTable = brdf::parseNdfTable("0, 10\n1, 9.5\n2, 8\n3, 5\n4, 3.5\n6, 3\n9, 2\n12, 0.5\n15, 0\n", "h.csv");
         h.brdf.geometry = brdf::Geometry::Smith;
         h.brdf.fresnel = brdf::Fresnel::Schlick;
-        const auto q = experiments::findPeak(h);
+        const auto q = measurement::findPeak(h);
         CHECK(q.mirrorValue < 0.5 * q.value);
-        CHECK(q.offsetDeg < experiments::kFarPeakDeg);
-        CHECK_FALSE(experiments::frameAboutPeak(h, 0.5));
+        CHECK(q.offsetDeg < measurement::kFarPeakDeg);
+        CHECK_FALSE(measurement::frameAboutPeak(h, 0.5));
         // GGX alpha 0.3 with Smith G and Schlick F at 45 deg: f E cos_i peaks at the horizon, 45 deg from the
         // mirror direction, but forward: measured about wr (flagged horizon_cut), as before.
-        render::Scene r = scene(brdf::Model::GGX, 0.3, 45);
+        render::Scene r = makeScene(brdf::Model::GGX, 0.3, 45);
         r.brdf.geometry = brdf::Geometry::Smith;
         r.brdf.fresnel = brdf::Fresnel::Schlick;
-        const auto f = experiments::findPeak(r);
+        const auto f = measurement::findPeak(r);
         CHECK(f.offsetDeg > 40.0);
         CHECK(f.fromLightDeg > f.offsetDeg);
-        CHECK_FALSE(experiments::frameAboutPeak(r, 0.5));
+        CHECK_FALSE(measurement::frameAboutPeak(r, 0.5));
     }
 }
 
-TEST_CASE("experiments::measureGl retroreflection: framed and measured about the peak") {
-    experiments::MeasureSetup setup;
+TEST_CASE("measurement::measureGl retroreflection: framed and measured about the peak") {
+    measurement::MeasureSetup setup;
     setup.width = setup.height = 128;
     auto& renderer = *test::glEnv().renderer;
     for (double inc : {30.0, 60.0, 75.0}) {
-        const render::Scene s = scene(brdf::Model::Retro, 1000, inc);
-        const auto m = experiments::measureGl(renderer, s, setup);
-        const auto ref = experiments::measureReference(s, setup.options);
+        const render::Scene s = makeScene(brdf::Model::Retro, 1000, inc);
+        const auto m = measurement::measureGl(renderer, s, setup);
+        const auto ref = measurement::measureReference(s, setup.options);
         CAPTURE(inc);
         CHECK(m.shape.flags.empty());
         // A cos^n lobe about wi is round about its axis: the Phong lobe's 2.1331 deg (measurement.md), aspect 1.
@@ -106,19 +106,19 @@ TEST_CASE("experiments::measureGl retroreflection: framed and measured about the
     SUBCASE("a narrow lobe 0.1 deg above the horizon is a true maximum: framed about it, not about the mirror") {
         // (Beckmann/GGX roughness 10, whose lobe rises all the way to the horizon, stay about the mirror
         // direction: tests/hard. Here the lobe falls on both sides of its peak, 0.0067 deg wide.)
-        const render::Scene s = scene(brdf::Model::Retro, 1e8, 89.9);
-        const auto p = experiments::findPeak(s);
+        const render::Scene s = makeScene(brdf::Model::Retro, 1e8, 89.9);
+        const auto p = measurement::findPeak(s);
         CHECK_FALSE(p.risesToHorizon);
-        REQUIRE(experiments::frameAboutPeak(s, 0.5));
-        const auto m = experiments::measureGl(renderer, s, setup);
-        const auto ref = experiments::measureReference(s, setup.options);
+        REQUIRE(measurement::frameAboutPeak(s, 0.5));
+        const auto m = measurement::measureGl(renderer, s, setup);
+        const auto ref = measurement::measureReference(s, setup.options);
         CHECK_FALSE(m.shape.has(measure::Flag::NoHighlight));
         CHECK(std::abs(m.shape.aspect - 1.0) < 2e-3);
         CHECK(m.shape.major_deg == doctest::Approx(ref.shape.major_deg).epsilon(2e-3));
     }
     SUBCASE("about the mirror direction the frame misses it: nothing to measure there") {
-        render::Scene s = scene(brdf::Model::Retro, 1000, 60);
+        render::Scene s = makeScene(brdf::Model::Retro, 1000, 60);
         s.light.chartCenter = s.light.chart().wr();  // a chart already set: no reframing
-        CHECK(experiments::measureGl(renderer, s, setup).shape.has(measure::Flag::NoHighlight));
+        CHECK(measurement::measureGl(renderer, s, setup).shape.has(measure::Flag::NoHighlight));
     }
 }

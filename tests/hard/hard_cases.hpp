@@ -1,5 +1,5 @@
 #pragma once
-// The hard cases of issue 8: where the maths breaks (grazing angles, mirror-like lobes, huge exponents,
+// The hard cases of where the maths breaks (grazing angles, mirror-like lobes, huge exponents,
 // degenerate geometry) the tool must give finite numbers or a named diagnosis, on both paths:
 //   - GL: the shader, float32 (every pixel of both outputs, and the measurement through GL);
 //   - double: the CPU twin (the same pixels in double, and the double reference measurement).
@@ -9,7 +9,7 @@
 //   - term rows (term_cases.cpp): one GLSL term at given arguments against its C++ twin.
 // build/bin/hilite_hard_report prints the measured outcome of every row as docs/hard_cases.md's tables.
 
-#include "experiments/measure_scene.hpp"
+#include "measurement/measure_scene.hpp"
 #include "measure/highlight.hpp"
 #include "render/renderer.hpp"
 
@@ -40,7 +40,7 @@ struct SceneCase {
     std::string name;
     render::Scene scene;
     Camera camera;
-    experiments::MeasureSetup setup;     ///< the measurement (default: automatic framing, 256^2)
+    measurement::MeasureSetup setup;     ///< the measurement (default: automatic framing, 256^2)
     std::vector<measure::Flag> glFlags;   ///< exactly the flags the GL measurement must report
     std::vector<measure::Flag> refFlags;  ///< exactly the flags the double reference must report
     double tolerance = 0;  ///< GL vs twin, relative, per pixel; 0: pixelTolerance() of the lobe
@@ -49,7 +49,7 @@ struct SceneCase {
 const std::vector<SceneCase>& sceneCases();
 
 /// The stated GL-vs-twin tolerance for a lobe of minor half-width r (rad): max(1e-4, 16 * 2^-24 / r), and
-/// none (infinite) below experiments::kEffectivelyMirrorHalfWidth, where GL says effectively_mirror.
+/// none (infinite) below measurement::kEffectivelyMirrorHalfWidth, where GL says effectively_mirror.
 /// The shader knows a pixel's direction only to about a float step (2^-24 rad, experiments/diagnose.hpp),
 /// and a lobe's log changes by a few units per r radians, so a pixel's relative error grows as step / r:
 /// measured 1-6.5 step / r over the rows (largest: anisotropic Beckmann, steepest at the 1e-3-of-peak
@@ -69,7 +69,7 @@ struct PixelCheck {
 
 struct SceneOutcome {
     PixelCheck pixels;
-    experiments::Measurement measurement;
+    measurement::Measurement measurement;
     double minorHalfWidth = 0;  ///< the twin's lobe (rad), 0 if it has none at the mirror direction
     double tolerance = 0;       ///< the pixel tolerance applied
 };

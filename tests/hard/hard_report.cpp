@@ -5,7 +5,7 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "experiments/diagnose.hpp"
+#include "measurement/diagnose.hpp"
 #include "gl/context.hpp"
 
 #include <algorithm>
@@ -56,11 +56,11 @@ void sweep(render::Renderer& renderer) {
                 s.brdf.model = m;
                 s.brdf.roughness = a;
                 s.light.incidenceDeg = inc;
-                const double r = experiments::twinLobeWidths(s, 0.5).minor;
-                const measure::Shape g = experiments::measureGl(renderer, s, {}).shape;
-                const measure::Shape ref = experiments::measureReference(s, {}).shape;
+                const double r = measurement::twinLobeWidths(s, 0.5).minor;
+                const measure::Shape g = measurement::measureGl(renderer, s, {}).shape;
+                const measure::Shape ref = measurement::measureReference(s, {}).shape;
                 std::cout << "| " << brdf::toString(m) << " " << a << " | " << inc << " | " << num(r, 2) << " | "
-                          << num(r / experiments::kFloatDirectionStep, 2) << " | " << num(g.aspect - ref.aspect, 2)
+                          << num(r / measurement::kFloatDirectionStep, 2) << " | " << num(g.aspect - ref.aspect, 2)
                           << " | " << num(g.major_deg / ref.major_deg - 1, 2) << " | "
                           << num(g.minor_deg / ref.minor_deg - 1, 2) << " | " << flagList(g.flags) << " |\n";
             }

@@ -4,7 +4,7 @@
 #include "hard/hard_cases.hpp"
 
 #include "brdf/evaluate.hpp"
-#include "experiments/diagnose.hpp"
+#include "measurement/diagnose.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -22,12 +22,12 @@ PinholeCamera rowCamera(const SceneCase& c) {
     const dvec3 wr = s.light.chart().wr();
     switch (k.view) {
         case View::Lobe: {
-            // The seed of automatic framing (experiments::measureGl): the twin's half-width fills 0.8 of the frame.
-            const double r = experiments::twinHalfWidth(s, c.setup.options.threshold);
+            // The seed of automatic framing (measurement::measureGl): the twin's half-width fills 0.8 of the frame.
+            const double r = measurement::twinHalfWidth(s, c.setup.options.threshold);
             const double fov = std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(r, 1.3)) / 0.8)), 1e-4, 160.0);
-            return experiments::measurementCamera(s, wr, fov, k.size, k.size);
+            return measurement::measurementCamera(s, wr, fov, k.size, k.size);
         }
-        case View::Fixed: return experiments::measurementCamera(s, wr, k.fovDeg, k.size, k.size);
+        case View::Fixed: return measurement::measurementCamera(s, wr, k.fovDeg, k.size, k.size);
         case View::Photo:
             return PinholeCamera::photo(k.elevationDeg, s.light.azimuthDeg + 180.0, s.eyeDistance, k.fovDeg, k.size,
                                         k.size);
@@ -63,7 +63,7 @@ void countValue(PixelCheck& k, double v, bool mustBeNonNegative) {
 double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
 
 double widthOf(const SceneCase& c) {
-    return experiments::twinLobeWidths(c.scene, c.setup.options.threshold).minor;
+    return measurement::twinLobeWidths(c.scene, c.setup.options.threshold).minor;
 }
 
 }  // namespace
@@ -71,8 +71,8 @@ double widthOf(const SceneCase& c) {
 double pixelTolerance(double minorHalfWidth) {
     if (!(minorHalfWidth > 0)) return 1e-4;  // no lobe at the mirror direction, or no width of its own
     // Narrower than float directions resolve: GL flags it effectively_mirror and claims no agreement.
-    if (minorHalfWidth < experiments::kEffectivelyMirrorHalfWidth) return INFINITY;
-    return std::max(1e-4, 16.0 * experiments::kFloatDirectionStep / minorHalfWidth);
+    if (minorHalfWidth < measurement::kEffectivelyMirrorHalfWidth) return INFINITY;
+    return std::max(1e-4, 16.0 * measurement::kFloatDirectionStep / minorHalfWidth);
 }
 
 SceneOutcome runSceneGl(render::Renderer& renderer, const SceneCase& c) {
@@ -112,7 +112,7 @@ SceneOutcome runSceneGl(render::Renderer& renderer, const SceneCase& c) {
         k.maxUvError = std::max({k.maxUvError, std::abs(m[1] - t.meas.y), std::abs(m[2] - t.meas.z)});
         k.maxWeightError = std::max(k.maxWeightError, relative(m[3], t.meas.w));
     }
-    out.measurement = experiments::measureGl(renderer, c.scene, c.setup);
+    out.measurement = measurement::measureGl(renderer, c.scene, c.setup);
     out.minorHalfWidth = widthOf(c);
     out.tolerance = c.tolerance > 0 ? c.tolerance : pixelTolerance(out.minorHalfWidth);
     return out;
@@ -128,7 +128,7 @@ SceneOutcome runSceneDouble(const SceneCase& c) {
             for (int j = 0; j < 4; ++j) countValue(out.pixels, t.color[j], true);
             for (int j = 0; j < 4; ++j) countValue(out.pixels, t.meas[j], j == 0 || j == 3);
         }
-    out.measurement = experiments::measureReference(c.scene, c.setup.options);
+    out.measurement = measurement::measureReference(c.scene, c.setup.options);
     out.minorHalfWidth = widthOf(c);
     return out;
 }

@@ -56,7 +56,7 @@ void sceneGl(size_t i) {
     CHECK(o.pixels.maxUvError <= kUvTolerance);
     CHECK(o.pixels.maxWeightError <= kWeightTolerance);
     checkMeasurement(o.measurement.shape, c.glFlags);
-    const measure::Shape ref = experiments::measureReference(c.scene, c.setup.options).shape;
+    const measure::Shape ref = measurement::measureReference(c.scene, c.setup.options).shape;
     if (comparable(o.measurement.shape) && comparable(ref)) {
         INFO("reference: " << ref);
         CHECK(std::abs(o.measurement.shape.aspect - ref.aspect) <= kAspectTolerance);

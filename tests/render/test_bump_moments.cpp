@@ -2,7 +2,7 @@
 // NDF when the moments are Beckmann's, and the filter choice follows the centre pixel's patch count.
 
 #include "brdf/ndf.hpp"
-#include "experiments/measure_scene.hpp"
+#include "measurement/measure_scene.hpp"
 #include "render/bump_moments.hpp"
 
 #include <doctest/doctest.h>
@@ -57,7 +57,7 @@ TEST_CASE("render::usesMoments") {
     s.brdf.model = brdf::Model::Beckmann;
     s.light.incidenceDeg = 60;
     s.surface.bumps = true;
-    auto cam = [&] { return experiments::measurementCamera(s, s.light.chart().wr(), 20.0, 64, 64); };
+    auto cam = [&] { return measurement::measurementCamera(s, s.light.chart().wr(), 20.0, 64, 64); };
     s.surface.bumpPeriodPx = 0.25;  // 4 periods across the centre pixel, 8 along: 32 patches an axis (33: perspective)
     CHECK(render::centreBumpSamples(s, cam()) >= 32);
     CHECK(render::centreBumpSamples(s, cam()) <= 33);

@@ -7,7 +7,7 @@
 namespace hilite::test {
 
 /// The default scene with built-in model `m`, `param` its exponent or roughness (usesExponent), lit at `incidence` deg.
-inline render::Scene scene(brdf::Model m, double param, double incidence) {
+inline render::Scene makeScene(brdf::Model m, double param, double incidence) {
     render::Scene s;
     s.brdf.model = m;
     (brdf::usesExponent(m) ? s.brdf.exponent : s.brdf.roughness) = param;

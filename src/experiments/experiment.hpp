@@ -1,0 +1,121 @@
+#pragma once
+// Experiment files (TOML): [experiment] name/title/description, [scene] a base scene (the tables of a
+// scene file), [[sweep]] axes (key + values or range), optional [match] (lobe widths matched at normal
+// incidence), [[plot]], [contact_sheet] and [summary]. See experiments/*.toml and the README.
+
+#include "experiments/pareto.hpp"
+#include "experiments/plot.hpp"
+#include "gl/context.hpp"
+#include "measurement/measure_scene.hpp"
+#include "measurement/session.hpp"
+#include "render/renderer.hpp"
+#include "scene/resolve.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace hilite::experiments {
+
+struct Configuration {
+    long index = 0;
+    scene::Values values;             ///< base scene, then one value per sweep axis
+    nlohmann::json sweep;             ///< the axis values of this configuration ("light.incidence": 30, ...)
+    nlohmann::json tags;              ///< case axes: their names and tags, written to the row as columns
+    scene::Values reference;          ///< case axes: what the reference scene changes (e.g. the exact Fresnel)
+};
+
+/// One value of a case axis: a named group of scene keys (e.g. a scene, or a setting of the knobs).
+struct SweepCase {
+    std::string name;
+    scene::Values values;             ///< the case's scene keys
+    scene::Values reference;          ///< `reference = { ... }`: keys changed only for the reference
+    nlohmann::json tags;              ///< `tags = { knob = "size" }`: extra row columns
+};
+
+struct SweepAxis {
+    std::string key;                  ///< "light.incidence"; for a case axis the column of the case names
+    std::vector<std::string> values;  ///< as the command line spells them; for a case axis the case names
+    std::vector<scene::Values> entries;  ///< one assignment per value, with its origin (file:line)
+    std::vector<SweepCase> cases;     ///< non-empty: a case axis (`cases = [...]` instead of values/range)
+};
+
+struct Experiment {
+    std::string path, text;  ///< the file and its text (copied beside the results for merge)
+    std::string name, title, description;
+    scene::Values base;
+    std::vector<SweepAxis> axes;
+    scene::Values match;          ///< no values given: no width matching
+    bool matching = false;        ///< [match] present
+    std::vector<PlotSpec> plots;
+    std::string sheetFile = "contact_sheet.png", sheetRowKey, sheetColumnKey, sheetSize = "256x192";
+    std::vector<std::string> sheetRows, sheetColumns;
+    std::vector<scene::Values> sheetRowValues, sheetColumnValues;
+    std::vector<std::pair<std::string, std::string>> strips;  ///< [[strip]]: material, PNG file
+    std::string summarySeries, summaryX = "incidence_deg";
+    std::vector<double> summaryAt;
+    /// Report sections the file asks for by name ([summary] sections = [...]): "shape" (the aspect against
+    /// cos theta_i headline table), "microgeometry" (bump convergence); by default "shape" with a series.
+    std::vector<std::string> sections;
+    bool referenceErrors = false;  ///< [reference] errors = true: each row's error against the double reference
+    int repeats = 1, warmup = 0;   ///< [timing]: each configuration measured warmup + repeats times
+    bool timing = false;           ///< [timing] present: rows get time_ms, the median of the repeats
+    std::vector<ParetoSpec> pareto;
+
+    /// Every configuration, validated (a bad value anywhere fails before anything runs).
+    std::vector<Configuration> configurations() const;
+};
+
+/// A path, or the name of a file shipped in experiments/ (found beside the executable like the shaders).
+std::string findExperiment(const std::string& nameOrPath);
+Experiment loadExperiment(const std::string& path);
+/// The same from text; `name` stands for the file in messages.
+Experiment parseExperiment(const std::string& text, const std::string& name);
+/// A sweep larger than this is refused: its rows would not fit a results file anyone reads.
+constexpr size_t kMaxConfigurations = 1000000;
+/// Writes dir/experiment.toml (the text, verbatim) and dir/experiment.origin (the original file's absolute
+/// path, against which merge resolves the relative .brdf paths of the copy).
+void writeExperimentCopy(const Experiment& e, const std::string& dir);
+/// The experiment a run's output folder holds (its copy, read as if from experiment.origin when present).
+Experiment loadExperimentCopy(const std::string& dir);
+
+class ExperimentRunner {
+public:
+    ExperimentRunner(const Experiment& e, const std::string& backend);
+    ~ExperimentRunner();
+    /// The fixed CSV columns: config, the case tags, every registry column, every measurement field.
+    const std::vector<std::string>& columns() const { return m_columns; }
+    /// Probes every .brdf shader (file and values) the configurations i with i mod shardN = shardK - 1 use,
+    /// so that a shader that does not build or runs too long fails before any result file is written.
+    void probeAll(const std::vector<Configuration>& configs, int shardK, int shardN);
+    /// Measures one configuration: one JSON row.
+    nlohmann::json measure(const Configuration& c);
+    /// Plots, contact sheet, strips and summary.md from the complete rows. seconds < 0: unknown (merge).
+    void finalize(const std::string& dir, const std::vector<nlohmann::json>& rows, double seconds);
+
+    /// [match]: each model's width parameter tuned so that its semi-major axis at normal incidence equals the
+    /// target's; sets it in `values` and `row["matched_parameter"]`.
+    void applyMatch(scene::Values& values, nlohmann::json& row);
+    /// A photo view of the scene `values` resolve to (the contact sheet's tiles).
+    ImageF photo(const scene::Values& values, int width, int height);
+    const Experiment& experiment() const { return m_exp; }
+    double targetMajorDeg() const { return m_targetMajorDeg; }
+    const std::map<std::string, double>& matched() const { return m_matched; }
+
+private:
+    /// The double reference of a configuration's scene (with its case's reference keys), cached by scene.
+    const measure::Shape& reference(const Configuration& c, scene::Values values);
+
+    const Experiment& m_exp;
+    std::string m_backend;
+    std::vector<std::string> m_columns;
+    double m_targetMajorDeg = 0;
+    std::map<std::string, double> m_matched;             ///< model -> matched width parameter
+    std::map<std::string, measure::Shape> m_references;  ///< reference scene -> its measurement
+    measurement::Session m_session;
+};
+
+}  // namespace hilite::experiments

@@ -1,0 +1,193 @@
+#include "experiments/reports.hpp"
+
+#include "brdf/evaluate.hpp"
+#include "core/text.hpp"
+#include "experiments/experiment.hpp"
+#include "experiments/strip.hpp"
+#include "io/image_io.hpp"
+#include "io/label.hpp"
+#include "measurement/row.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace hilite::experiments {
+
+namespace {
+
+using Rows = std::vector<nlohmann::json>;
+
+struct Report {
+    std::ostringstream md;
+    std::vector<std::string> notes;  ///< what could not be made, and why
+};
+
+void plots(const Experiment& e, const std::string& dir, const Rows& rows, Report& out) {
+    for (const auto& p : e.plots) {
+        std::string why;
+        if (!plot(dir, p, rows, why)) out.notes.push_back("plot " + p.file + " not made: " + why);
+    }
+}
+
+/// Photo views, one row per sheet row value, one column per column value, each tile exposed to its own
+/// peak; the row values are written left of the tiles and the column values above them.
+bool contactSheet(ExperimentRunner& runner, const std::string& dir) {
+    const Experiment& e = runner.experiment();
+    if (e.sheetRows.empty() || e.sheetColumns.empty()) return false;
+    scene::Values sizeValue;
+    sizeValue.set("size", e.sheetSize, e.path + ": contact_sheet.size");
+    const scene::Resolved sized = scene::resolve(sizeValue, scene::Purpose::Render);
+    const int tw = sized.setup.width, th = sized.setup.height;
+    const int gap = 4, cols = int(e.sheetColumns.size()), nrows = int(e.sheetRows.size()), scale = 2;
+    const std::string rowKey = e.sheetRowKey.substr(e.sheetRowKey.find('.') + 1);
+    const std::string colKey = e.sheetColumnKey.substr(e.sheetColumnKey.find('.') + 1);
+    int left = io::textWidth(rowKey, scale);
+    for (const auto& r : e.sheetRows) left = std::max(left, io::textWidth(r, scale));
+    left += 2 * gap;
+    const int top = 2 * io::textHeight(scale) + gap;
+    ImageF sheet(left + cols * tw + (cols - 1) * gap, top + nrows * th + (nrows - 1) * gap, 4);
+    io::drawText(sheet, left, 0, colKey + " ->", scale);
+    io::drawText(sheet, 2, 0, rowKey, scale);
+    for (int ri = 0; ri < nrows; ++ri)
+        for (int ci = 0; ci < cols; ++ci) {
+            scene::Values values = e.base;
+            values.merge(e.sheetRowValues[size_t(ri)]);
+            values.merge(e.sheetColumnValues[size_t(ci)]);
+            nlohmann::json ignored;
+            runner.applyMatch(values, ignored);
+            const ImageF tile = runner.photo(values, tw, th);
+            double peak = 0;
+            for (size_t i = 0; i < tile.data.size(); i += 4) peak = std::max(peak, double(tile.data[i + 1]));
+            const double s = peak > 0 ? 1.0 / peak : 1.0;  // each tile exposed to its own peak
+            const int x0 = left + ci * (tw + gap), yTop = top + ri * (th + gap);
+            for (int y = 0; y < th; ++y)
+                for (int x = 0; x < tw; ++x)
+                    for (int c = 0; c < 4; ++c)
+                        sheet.pixel(x0 + x, sheet.height - yTop - th + y)[c] =
+                            float(tile.pixel(x, y)[c] * (c < 3 ? s : 1.0));
+            if (ri == 0) io::drawText(sheet, x0, io::textHeight(scale), e.sheetColumns[size_t(ci)], scale);
+            if (ci == 0) io::drawText(sheet, 2, yTop + th / 2 - io::textHeight(scale) / 2, e.sheetRows[size_t(ri)], scale);
+        }
+    io::writePng(dir + "/" + e.sheetFile, sheet, {});
+    return true;
+}
+
+/// Fresnel strips: the material's colour from normal incidence to grazing, and F against theta.
+void strips(const Experiment& e, const std::string& dir, Report& out) {
+    for (const auto& [material, file] : e.strips) {
+        scene::Values v;
+        v.set("material", material, e.path + ": strip.material");
+        const brdf::Params p = scene::resolve(v, scene::Purpose::Brdf).scene.brdf;
+        writeFresnelStrip(p, 512, 64, dir + "/" + file, material + " (" + brdf::toString(p.fresnel) + ")");
+        std::vector<nlohmann::json> frows;
+        for (int t = 0; t <= 90; ++t) {
+            double c, s;
+            cosSinDeg(t, c, s);
+            const dvec3 F = brdf::fresnel(p, c);
+            for (int ch = 0; ch < 3; ++ch) frows.push_back({{"theta_deg", t}, {"channel", std::string(1, "rgb"[ch])}, {"F", F[ch]}});
+        }
+        PlotSpec spec;
+        spec.file = material + "_fresnel.png";
+        spec.title = "Fresnel reflectance of " + material + " (" + brdf::toString(p.fresnel) + "), linear sRGB";
+        spec.x = "theta_deg", spec.y = "F", spec.series = "channel", spec.key = "top left";
+        std::string why;
+        if (!plot(dir, spec, frows, why)) out.notes.push_back("plot " + spec.file + " not made: " + why);
+        const auto st = fresnelStats(p);
+        out.md << std::setprecision(4) << "![" << material << " strip](" << file << ")\n\n![" << material
+               << " Fresnel](" << spec.file << ")\n\n" << material << " (" << brdf::toString(p.fresnel)
+               << "): F(0) = (" << st.normal.x << ", " << st.normal.y << ", " << st.normal.z << "), red dips to "
+               << st.redMin << " at " << st.redMinThetaDeg << " deg, F(89) = (" << st.grazing89.x << ", "
+               << st.grazing89.y << ", " << st.grazing89.z << ").\n\n";
+    }
+}
+
+/// The "shape" section: the headline table of the series at the chosen angles, and how far each series is
+/// from a round highlight and from the microfacet prediction aspect = cos theta_i.
+std::string shapeSection(const Experiment& e, const Rows& rows) {
+    if (e.summarySeries.empty()) return "";
+    std::ostringstream md;
+    md << "## Headline numbers\n\n| " << e.summarySeries << " | " << e.summaryX
+       << " | aspect | cos | eccentricity | semi-major (deg) | semi-minor (deg) | centroid u (deg) | flags |\n"
+       << "|---|---|---|---|---|---|---|---|---|\n";
+    std::map<std::string, std::pair<double, double>> worst;  // series -> max |aspect-1|, max |aspect-cos|
+    std::vector<std::string> order;
+    for (const auto& r : rows) {
+        if (!r.contains(e.summarySeries) || r["aspect"].is_null()) continue;
+        const std::string s = r[e.summarySeries].is_string() ? r[e.summarySeries].get<std::string>()
+                                                             : r[e.summarySeries].dump();
+        if (!worst.count(s)) order.push_back(s), worst[s] = {0, 0};
+        const double x = r.value(e.summaryX, 0.0), a = r["aspect"].get<double>();
+        if (r["flags"].empty() && x <= 80) {
+            worst[s].first = std::max(worst[s].first, std::abs(a - 1));
+            worst[s].second = std::max(worst[s].second, std::abs(a - r.value("cos_incidence", 1.0)));
+        }
+        if (std::find(e.summaryAt.begin(), e.summaryAt.end(), x) == e.summaryAt.end()) continue;
+        std::string flags;
+        for (const auto& fl : r["flags"]) flags += (flags.empty() ? "" : ", ") + fl.get<std::string>();
+        md << std::setprecision(5) << "| " << s << " | " << x << " | " << a << " | " << r.value("cos_incidence", 0.0)
+           << " | " << r.value("eccentricity", 0.0) << " | " << r.value("major_deg", 0.0) << " | "
+           << r.value("minor_deg", 0.0) << " | " << r.value("centroid_u_deg", 0.0) << " | " << flags << " |\n";
+    }
+    md << "\nOver the rows without flags at " << e.summaryX << " <= 80:\n\n| " << e.summarySeries
+       << " | max abs(aspect - 1) | max abs(aspect - cos theta_i) |\n|---|---|---|\n";
+    for (const auto& s : order)
+        md << std::setprecision(3) << "| " << s << " | " << worst[s].first << " | " << worst[s].second << " |\n";
+    return md.str();
+}
+
+void header(ExperimentRunner& runner, size_t rows, double seconds, Report& out) {
+    const Experiment& e = runner.experiment();
+    out.md << "# " << e.title << "\n\n" << e.description << "\n\n" << rows << " configurations";
+    if (seconds >= 0) out.md << ", measured in " << std::fixed << std::setprecision(2) << seconds << " s";
+    out.md << std::defaultfloat << ". Rows: [results.csv](results.csv), [results.jsonl](results.jsonl).\n\n";
+    if (!runner.matched().empty()) {
+        out.md << "Lobe widths matched at normal incidence to a semi-major axis of " << std::setprecision(5)
+               << runner.targetMajorDeg() << " deg:\n\n| model | parameter |\n|---|---|\n";
+        for (const auto& [k, v] : runner.matched()) out.md << "| " << k << " | " << std::setprecision(6) << v << " |\n";
+        out.md << "\n";
+    }
+}
+
+}  // namespace
+
+const std::vector<std::string>& reportSections() {
+    static const std::vector<std::string> all = {"shape", "microgeometry"};
+    return all;
+}
+
+bool isReportSection(const std::string& name) {
+    const auto& all = reportSections();
+    return std::find(all.begin(), all.end(), name) != all.end();
+}
+
+void writeReports(ExperimentRunner& runner, const std::string& dir, const Rows& rows, double seconds) {
+    const Experiment& e = runner.experiment();
+    Report out;
+    plots(e, dir, rows, out);
+    const bool sheet = contactSheet(runner, dir);
+    header(runner, rows.size(), seconds, out);
+    for (const auto& p : e.plots) out.md << "![" << p.title << "](" << p.file << ")\n\n";
+    strips(e, dir, out);
+    if (sheet)
+        out.md << "![contact sheet](" << e.sheetFile << ")\n\nContact sheet: photo views, rows = " << e.sheetRowKey
+               << " (top to bottom, values at the left), columns = " << e.sheetColumnKey
+               << " (left to right, values above); each tile is exposed to its own peak.\n\n";
+    for (const auto& s : e.sections) out.md << (s == "shape" ? shapeSection(e, rows) : microSummary(rows));
+    for (const auto& spec : e.pareto) {
+        const auto points = paretoPoints(spec, rows);
+        std::string why;
+        if (!plotPareto(dir, spec, points, why)) out.notes.push_back("plot " + spec.file + " not made: " + why);
+        out.md << paretoMarkdown(spec, points);
+    }
+    if (e.timing)
+        out.md << "Times: wall clock of one whole measurement (framing, renders, readback, analysis) in the running "
+                  "process, the median of "
+               << e.repeats << " repeats after " << e.warmup << " warm-up run(s) per row.\n";
+    for (const auto& n : out.notes) out.md << "\nNote: " << n << "\n";
+    io::writeFileAtomic(dir + "/summary.md", out.md.str());
+}
+
+}  // namespace hilite::experiments

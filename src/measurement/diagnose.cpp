@@ -1,0 +1,93 @@
+#include "measurement/diagnose.hpp"
+
+#include "brdf/evaluate.hpp"
+#include "measurement/measure_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hilite::measurement {
+
+namespace {
+
+/// Distance from the mirror direction along (du, dv) at which the lobe falls below `level`; -1 if the
+/// horizon comes first, or the lobe never falls within pi/2.
+double halfWidthAlong(const measure::LobeFunction& f, double du, double dv, double level) {
+    double lo = 0, hi = 1e-12;  // far below any lobe float or double can hold (roughness >= 1e-7)
+    for (;; lo = hi, hi *= 2) {
+        if (hi > kPi / 2) return -1;
+        if (!f.visible(hi * du, hi * dv)) return -1;
+        if (f.lobe(hi * du, hi * dv) < level) break;
+    }
+    for (int i = 0; i < 40; ++i) {  // to 1e-12 of the bracket: far below the 1e-3 the flags need
+        const double mid = 0.5 * (lo + hi);
+        (f.visible(mid * du, mid * dv) && f.lobe(mid * du, mid * dv) >= level ? lo : hi) = mid;
+    }
+    return hi;
+}
+
+void replace(measure::Shape& s, measure::Flag from, measure::Flag to) {
+    s.flags.erase(std::remove(s.flags.begin(), s.flags.end(), from), s.flags.end());
+    if (!s.has(to)) s.flags.push_back(to);
+}
+
+}  // namespace
+
+LobeWidths twinLobeWidths(const render::Scene& scene, double threshold) {
+    const measure::LobeFunction f = twinLobe(scene);
+    LobeWidths w;
+    w.peak = f.lobe(0, 0);
+    if (!(w.peak > 0)) return w;
+    w.minor = kPi;
+    constexpr int kAzimuths = 16;
+    for (int k = 0; k < kAzimuths; ++k) {
+        const double psi = 2.0 * kPi * k / kAzimuths;
+        const double r = halfWidthAlong(f, std::cos(psi), std::sin(psi), threshold * w.peak);
+        if (r < 0) continue;
+        w.minor = std::min(w.minor, r);
+        w.major = std::max(w.major, r);
+    }
+    if (w.major == 0) w.minor = 0;  // cut by the horizon on every azimuth: no width of its own
+    return w;
+}
+
+bool unboundedAtHorizon(const render::Scene& scene, const measure::Shape& shape) {
+    if (!(shape.peak > 0)) return false;
+    const dvec3 w = scene.light.chart().direction(deg2rad(shape.peak_u_deg), deg2rad(shape.peak_v_deg));
+    const double horizontal = std::hypot(w.x, w.y);
+    if (!(w.z > 0 && w.z < 0.05 && horizontal > 0)) return false;
+    const dvec3 eye = render::eyePosition(scene);
+    auto lobeAt = [&](double z) {
+        const dvec3 d = glm::normalize(dvec3(w.x / horizontal, w.y / horizontal, z));
+        return brdf::luminance(render::surfaceRadiance(scene, eye, d));
+    };
+    return lobeAt(1e-6 * w.z) > 100.0 * lobeAt(1e-3 * w.z);
+}
+
+bool lightReaches(const render::Scene& scene) {
+    const render::Light& l = scene.light;
+    if (l.type == render::LightType::Point) return l.intensity > 0 && l.position().z > 0;
+    return l.irradiance > 0 && l.direction().z > 0;
+}
+
+void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape,
+              const LobeWidths* widths) {
+    using measure::Flag;
+    if (brdf::isDelta(scene.brdf)) {
+        // No pixel and no search can sample a delta: the highlight is the mirror image of the light, of
+        // reflectance F at the mirror pair's cos (none for a matched index, F = 0).
+        const double F = brdf::luminance(brdf::fresnel(scene.brdf, scene.light.direction().z));
+        if (lightReaches(scene) && F > 0) replace(shape, Flag::NoHighlight, Flag::Mirror);
+        return;
+    }
+    if (unboundedAtHorizon(scene, shape)) shape.flags.push_back(Flag::UnboundedAtHorizon);
+    const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
+    if (!(w.peak > 0)) return;
+    // The lobe exists, yet no pixel centre of a fixed frame sees it: the frame is too coarse for it.
+    if (path != Path::Reference && shape.has(Flag::NoHighlight)) replace(shape, Flag::NoHighlight, Flag::UnderResolved);
+    if (path == Path::Gl && w.major > 0 && w.minor < kEffectivelyMirrorHalfWidth &&
+        !shape.has(Flag::EffectivelyMirror))
+        shape.flags.push_back(Flag::EffectivelyMirror);
+}
+
+}  // namespace hilite::measurement

@@ -1,0 +1,62 @@
+#pragma once
+// One highlight measurement of a scene, end to end: aim and zoom the measurement view (automatic
+// framing), render, read back, analyse. Also the double-precision reference of the same scene.
+
+#include "core/camera.hpp"
+#include "measure/highlight.hpp"
+#include "render/renderer.hpp"
+#include "render/scene.hpp"
+#include "scene/setup.hpp"
+
+#include <array>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace hilite::measurement {
+
+using scene::kMaxSupersample;
+using scene::MeasureSetup;
+
+struct Measurement {
+    measure::Shape shape;
+    int renders = 0;          ///< GL renders it took (aiming + final)
+    double fovDeg = 0;        ///< field of view of the final render
+    dvec3 center{0, 0, 1};    ///< exitant direction at the centre of the final frame
+    double render_ms = 0;     ///< GL draw + readback (or the CPU twin's render), all renders
+    double measure_ms = 0;    ///< analysis of the final render (and framing arithmetic)
+    long shadedPixels = 0;    ///< pixels of the final frame drawn per sample (the crop, or the whole frame)
+    std::string framing;      ///< "automatic" (seeded by the twin), "blind" (coarse renders only) or "fixed"
+    std::string framingNote;  ///< blind framing: why it found no highlight, when it gave up ("" otherwise)
+    /// Without a CPU twin (a .brdf file) the error estimate comes from resolution convergence: the same
+    /// frame measured again at half the size (halfWidth x halfHeight); |final - this| per field estimates
+    /// the final measurement's error.
+    std::optional<measure::Shape> halfResolution;
+    int halfWidth = 0, halfHeight = 0;
+};
+
+/// The lobe of a scene as a function of chart coordinates, evaluated by the double twin. Like everything
+/// twin-based below, it throws InputError for a .brdf scene (render::requireTwin).
+measure::LobeFunction twinLobe(const render::Scene& scene);
+
+/// Angular radii (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
+/// direction, along +u, -u, +v, -v (bisection to 1e-18 of the bracket; the horizon ends a ray too).
+std::array<double, 4> twinRadii(const render::Scene& scene, double threshold);
+/// The largest of twinRadii: a seed for framing and for the reference's search disc.
+double twinHalfWidth(const render::Scene& scene, double threshold);
+
+/// Measures the highlight in GL with fixed or automatic framing. A .brdf scene has no twin to seed the
+/// framing: it is measured by measureBlind (experiments/blind_framing.hpp).
+Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);
+/// The same measurement with every render made by the CPU double twin (render/cpu_view.hpp).
+Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup);
+/// measureCpu when setup.cpu, else measureGl (`renderer` may be null for the CPU path).
+Measurement measure(render::Renderer* renderer, const render::Scene& scene, const MeasureSetup& setup);
+
+/// The CPU double-precision reference of the same definition (no GL). InputError for a .brdf scene.
+Measurement measureReference(const render::Scene& scene, const measure::Options& options);
+
+/// The measurement camera looking along `center` with the given field of view.
+PinholeCamera measurementCamera(const render::Scene& scene, const dvec3& center, double fovDeg, int w, int h);
+
+}  // namespace hilite::measurement

@@ -1,0 +1,136 @@
+#include "measurement/row.hpp"
+
+#include "brdf/ndf_table.hpp"
+#include "measurement/micro_fields.hpp"
+#include "measurement/peak_frame.hpp"
+#include "measurement/tolerance.hpp"
+
+#include <cmath>
+#include <tuple>
+
+namespace hilite::measurement {
+
+namespace {
+
+using nlohmann::json;
+
+json finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+void shapeFields(json& j, const measure::Shape& r) {
+    for (auto [key, v] : {std::pair{"aspect", r.aspect}, {"eccentricity", r.eccentricity}, {"major_deg", r.major_deg},
+                          {"minor_deg", r.minor_deg}, {"orientation_deg", r.orientation_deg},
+                          {"centroid_u_deg", r.centroid_u_deg}, {"centroid_v_deg", r.centroid_v_deg},
+                          {"fwhm_u_deg", r.fwhm_u_deg}, {"fwhm_v_deg", r.fwhm_v_deg}, {"peak", r.peak},
+                          {"peak_u_deg", r.peak_u_deg}, {"peak_v_deg", r.peak_v_deg}, {"area_deg2", r.area_deg2}})
+        j[key] = finite(v);
+    json flags = json::array();
+    for (auto fl : r.flags) flags.push_back(measure::toString(fl));
+    j["flags"] = flags;
+    j["minor_pixels"] = finite(r.minor_pixels);
+}
+
+/// Without a CPU twin (a .brdf file) the error is estimated by measuring the same frame at half the size.
+void errorEstimate(json& j, const Measurement& m, int width, int height) {
+    const measure::Shape &r = m.shape, &h = *m.halfResolution;
+    json e;
+    for (auto [key, a, b] : {std::tuple{"aspect", r.aspect, h.aspect}, {"eccentricity", r.eccentricity, h.eccentricity},
+                             {"major_deg", r.major_deg, h.major_deg}, {"minor_deg", r.minor_deg, h.minor_deg},
+                             {"centroid_u_deg", r.centroid_u_deg, h.centroid_u_deg},
+                             {"centroid_v_deg", r.centroid_v_deg, h.centroid_v_deg}})
+        e[key] = std::isfinite(a - b) ? json(std::abs(a - b)) : json(nullptr);
+    j["error_estimate"] = e;
+    j["error_estimate_from"] = "resolution convergence (no CPU twin for .brdf)";
+    j["error_estimate_sizes"] = std::to_string(width) + "x" + std::to_string(height) + " vs " +
+                                std::to_string(m.halfWidth) + "x" + std::to_string(m.halfHeight);
+}
+
+/// The tolerance fields: what was asked, what was chosen, what it is estimated to reach, what it cost.
+void toleranceFields(json& j, const ToleranceResult& r) {
+    j["error_estimate"] = r.errorEstimate;
+    j["predicted_error"] = r.predictedError;
+    j["tolerance_met"] = r.met;
+    j["settings"] = {{"size", std::to_string(r.setup.width) + "x" + std::to_string(r.setup.height)},
+                     {"boundary", r.setup.options.subpixel ? "subpixel" : "pixel"},
+                     {"supersample", r.setup.supersample},
+                     {"framing", r.setup.fovDeg > 0 ? "fixed" : "auto"},
+                     {"renderer", r.setup.cpu ? "cpu" : "gl"}};
+    j["check"] = {{"size", std::to_string(r.checkSetup.width) + "x" + std::to_string(r.checkSetup.height)},
+                  {"aspect", r.check.shape.aspect}};
+    j["rounds"] = r.rounds;
+    j["time_ms"] = r.total_ms;
+    j["startup_ms"] = r.startup_ms;
+}
+
+}  // namespace
+
+json row(const scene::Resolved& r, const Measurement& m, int width, int height, const std::string& method) {
+    const render::Scene& s = r.scene;
+    json j = scene::parameterColumns(r);
+    if (s.brdfFile) j["brdf_params"] = brdf_file::valuesText(*s.brdfFile);  // every value, defaults included
+    if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable && !s.brdfFile)
+        j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
+    // Under a point light each point of the plane has its own wi: the measured lobe is the eye's view.
+    j["lobe"] = s.light.type == render::LightType::Point
+                    ? "as seen by the eye at distance " + std::to_string(s.eyeDistance) + " (point light)"
+                    : std::string("exitant directions (distant light)");
+    j["method"] = method;
+    double offsetDeg = 0;  // a highlight far from the mirror direction is measured about its peak
+    j["framed_about"] = framedAbout(s, r.setup.options.threshold, offsetDeg);
+    j["peak_offset_deg"] = offsetDeg;
+    shapeFields(j, m.shape);
+    j["cos_incidence"] = s.light.direction().z;
+    j["renders"] = m.renders;
+    j["size"] = method != "reference" ? std::to_string(width) + "x" + std::to_string(height) : "";
+    j["fov_deg"] = m.fovDeg;
+    j["render_ms"] = m.render_ms;
+    j["measure_ms"] = m.measure_ms;
+    if (s.surface.bumps) addMicroFields(j, s, m, r.setup.options.threshold, width, height);
+    j["framing"] = m.framing;
+    if (!m.framingNote.empty()) j["framing_note"] = m.framingNote;
+    if (m.halfResolution) errorEstimate(j, m, width, height);
+    return j;
+}
+
+json measureRow(render::Renderer* renderer, const scene::Resolved& r) {
+    const render::Scene& scene = r.scene;
+    const MeasureSetup& setup = r.setup;
+    if (r.reference) return row(r, measureReference(scene, setup.options), setup.width, setup.height, "reference");
+    const std::string method = setup.cpu ? "cpu" : "gl";
+    if (r.tolerance > 0) {
+        ToleranceSetup t;
+        t.tolerance = r.tolerance;
+        t.base = setup;
+        const ToleranceResult res = measureToTolerance(renderer, scene, t);
+        json j = row(r, res.measurement, res.setup.width, res.setup.height, method);
+        toleranceFields(j, res);
+        return j;
+    }
+    const Measurement m = measure(renderer, scene, setup);
+    json j = row(r, m, setup.width, setup.height, method);
+    if (renderer) addPrefilterFields(j, *renderer, scene, setup, m);  // --prefilter-check
+    return j;
+}
+
+double rowNumber(const nlohmann::json& row, const char* key) {
+    return row.contains(key) && row[key].is_number() ? row[key].get<double>() : NAN;
+}
+
+const std::vector<std::string>& measurementColumns() {
+    static const std::vector<std::string> columns = {
+        "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg", "centroid_u_deg", "centroid_v_deg",
+        "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg", "area_deg2", "cos_incidence", "flags",
+        "renders", "size", "fov_deg", "minor_pixels", "method", "matched_parameter", "brdf_params", "framing", "framing_note",
+        "error_estimate", "error_estimate_from", "render_ms", "measure_ms",
+        // what the highlight is measured about (retroreflection: its peak), a tabulated NDF's factor
+        "framed_about", "peak_offset_deg", "ndf_table_normalization",
+        // explicit micro-geometry (empty on flat surfaces): measurement/micro_fields.hpp
+        "log2_bump_period_px", "bump_samples_center", "analytic_aspect", "analytic_major_deg", "analytic_minor_deg",
+        "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms", "slope_ks",
+        "bump_filter_used", "prefilter_aspect", "prefilter_aspect_minus_analytic", "prefilter_major_over_analytic",
+        "prefilter_minor_over_analytic", "next_seed_aspect", "next_seed_aspect_minus_analytic",
+        "next_seed_major_over_analytic", "next_seed_minor_over_analytic", "prefilter_block_error",
+        "supersample_block_noise", "prefilter_error", "prefilter_blocks", "prefilter_unresolved_blocks"};
+    return columns;
+}
+
+}  // namespace hilite::measurement

@@ -1,0 +1,50 @@
+#include "measurement/session.hpp"
+
+#include "measurement/shader_probe.hpp"
+
+#include <iostream>
+
+namespace hilite::measurement {
+
+Session::Session(std::string backend) : m_backend(std::move(backend)) {}
+Session::~Session() = default;
+
+render::Renderer& Session::rendererFor(const scene::Resolved& r) {
+    const std::string backend = r.backend.empty() ? m_backend : r.backend;
+    if (const auto& file = r.scene.brdfFile) {
+        // Each .brdf file with each set of values passes the probe once (measurement/shader_probe.hpp).
+        const std::string key =
+            file->path + "|" + brdf_file::valuesText(*file) + "|" + render::toString(r.scene.light.type);
+        if (m_probed.insert(key).second) {
+            for (const std::string& note : file->notes) std::cerr << "hilite: note: " << note << "\n";
+            probeShader(r.scene, backend, r.shaderTimeoutS);
+        }
+    }
+    if (!m_renderer) {
+        scene::Resolved b;
+        b.backend = backend;
+        m_context = std::make_unique<gl::Context>(scene::backendOf(b));
+        m_renderer = std::make_unique<render::Renderer>(*m_context);
+    }
+    m_renderer->setShaderTimeLimit(r.shaderTimeoutS);
+    return *m_renderer;
+}
+
+nlohmann::json Session::measureOne(const scene::Resolved& r) {
+    render::Renderer* gl = r.reference || r.setup.cpu ? nullptr : &rendererFor(r);
+    return measureRow(gl, r);
+}
+
+std::vector<nlohmann::json> Session::measure(const scene::Resolved& r) {
+    std::vector<nlohmann::json> rows;
+    scene::Resolved one = r;
+    for (double angle : r.angles) {
+        one.scene.light.incidenceDeg = angle;
+        rows.push_back(measureOne(one));
+    }
+    return rows;
+}
+
+std::string Session::glRenderer() const { return m_context ? m_context->info().renderer : ""; }
+
+}  // namespace hilite::measurement

@@ -1,0 +1,154 @@
+#include "measurement/shader_probe.hpp"
+
+#include "core/error.hpp"
+#include "measurement/measure_scene.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <vector>
+
+namespace hilite::measurement {
+
+namespace {
+
+constexpr int kProbeSize = 8;
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+/// The hilite executable that runs the probe: this one, or (in a program linked against the library) the
+/// installed one.
+std::string probeExecutable() {
+    char buf[4096];
+    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    if (n <= 0) throw SystemError("shader probe: cannot find this executable (/proc/self/exe)");
+    const std::string self(buf, size_t(n));
+    if (self.substr(self.rfind('/') + 1) == "hilite") return self;
+#ifdef HILITE_INSTALL_BIN_DIR
+    return std::string(HILITE_INSTALL_BIN_DIR) + "/hilite";
+#else
+    return self;
+#endif
+}
+
+/// The child's command line: the scene's .brdf, its values and light, nothing else.
+std::vector<std::string> probeArgs(const std::string& exe, const render::Scene& s, const std::string& backend) {
+    std::vector<std::string> a = {exe, "probe-shader", "--brdf", s.brdfFile->path};
+    for (const std::string& v : brdf_file::valueAssignments(*s.brdfFile)) a.insert(a.end(), {"--param", v});
+    a.insert(a.end(), {"--incidence", number(s.light.incidenceDeg), "--azimuth", number(s.light.azimuthDeg),
+                       "--tangent-angle", number(s.brdf.tangentAngleDeg), "--light", render::toString(s.light.type),
+                       "--light-distance", number(s.light.distance), "--distance", number(s.eyeDistance)});
+    if (!backend.empty()) a.insert(a.end(), {"--gl-backend", backend});
+    return a;
+}
+
+/// Reads the child's stderr until it closes or the deadline passes; false at the deadline.
+bool readUntil(int fd, std::chrono::steady_clock::time_point deadline, std::string& out) {
+    char buf[4096];
+    for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) return false;
+        pollfd p{fd, POLLIN, 0};
+        const int r = poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
+        if (r < 0 && errno == EINTR) continue;
+        if (r < 0) return true;
+        if (r == 0) continue;
+        const ssize_t n = read(fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return true;  // closed: the child is ending
+        if (out.size() < 65536) out.append(buf, size_t(n));
+    }
+}
+
+/// Waits for the child until the deadline; false (child still running) at the deadline.
+bool waitUntil(pid_t pid, std::chrono::steady_clock::time_point deadline, int& status) {
+    for (;;) {
+        const pid_t r = waitpid(pid, &status, WNOHANG);
+        if (r == pid) return true;
+        if (r < 0 && errno != EINTR) return true;
+        if (std::chrono::steady_clock::now() >= deadline) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+}
+
+std::string firstLine(std::string s) {
+    s = s.substr(0, s.find('\n'));
+    if (s.rfind("hilite: ", 0) == 0) s.erase(0, 8);
+    return s;
+}
+
+}  // namespace
+
+void probeShader(const render::Scene& scene, const std::string& backend, double timeoutSeconds) {
+    if (!scene.brdfFile) return;
+    const std::vector<std::string> args = probeArgs(probeExecutable(), scene, backend);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0) throw SystemError("shader probe: pipe failed");
+    const auto start = std::chrono::steady_clock::now();
+    const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                      std::chrono::duration<double>(timeoutSeconds));
+    const pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]), close(fds[1]);
+        throw SystemError("shader probe: fork failed");
+    }
+    if (pid == 0) {  // the child: only async-signal-safe calls until exec
+        dup2(fds[1], STDERR_FILENO);
+        const int null = open("/dev/null", O_WRONLY);
+        if (null >= 0) dup2(null, STDOUT_FILENO);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    close(fds[1]);
+    std::string err;
+    int status = 0;
+    const bool finished = readUntil(fds[0], deadline, err) && waitUntil(pid, deadline, status);
+    close(fds[0]);
+    if (!finished) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &status, 0);
+        char limit[32];
+        std::snprintf(limit, sizeof limit, "%g", timeoutSeconds);
+        throw InputError(scene.brdfFile->path + ": shader took longer than " + limit + " s on a probe render (" +
+                         std::to_string(kProbeSize) + "x" + std::to_string(kProbeSize) +
+                         " pixels, in a child process); stopped (raise --shader-timeout if it is only slow)");
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 2) throw InputError(firstLine(err));
+    throw SystemError("shader probe of " + scene.brdfFile->path + " failed (" +
+                      (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
+                                           : "exit " + std::to_string(WEXITSTATUS(status))) +
+                      "): " + firstLine(err));
+}
+
+/// The child: compile both outputs and render the probe views; any failure is the usual one-line error.
+void runShaderProbe(render::Scene scene, gl::Backend backend) {
+    const double incidence = scene.light.incidenceDeg;
+    gl::Context context(backend);
+    render::Renderer renderer(context);
+    ImageF img;
+    for (double inc : {incidence, 0.0, 45.0, 80.0}) {
+        scene.light.incidenceDeg = inc;
+        const dvec3 wr = scene.light.chart().wr();
+        for (double fov : {160.0, 2.0})
+            for (auto out : {render::Output::Measure, render::Output::Color})
+                renderer.render(scene, measurementCamera(scene, wr, fov, kProbeSize, kProbeSize), out, img);
+    }
+}
+
+}  // namespace hilite::measurement

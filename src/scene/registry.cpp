@@ -1,0 +1,384 @@
+#include "scene/registry.hpp"
+
+#include "brdf/materials.hpp"
+#include "brdf/ndf_table.hpp"
+#include "brdf/params.hpp"
+#include "core/text.hpp"
+#include "render/surface.hpp"
+#include "scene/resolve.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hilite::scene {
+
+namespace {
+
+using nlohmann::json;
+using brdf::Model;
+
+// ---- What a parameter applies to ----
+
+bool builtin(const Resolved& r) { return !r.scene.brdfFile; }
+bool usesExponent(const Resolved& r) { return builtin(r) && brdf::usesExponent(r.scene.brdf.model); }
+bool usesRoughness(const Resolved& r) {
+    const Model m = r.scene.brdf.model;
+    return builtin(r) && m != Model::None && m != Model::Tabulated && !brdf::usesExponent(m);
+}
+bool anisotropic(const Resolved& r) {
+    return builtin(r) && r.scene.brdf.anisotropic() && brdf::allowsAnisotropy(r.scene.brdf.model);
+}
+bool tangentFrame(const Resolved& r) { return anisotropic(r) || r.scene.brdfFile; }
+bool microfacet(const Resolved& r) { return builtin(r) && brdf::isMicrofacet(r.scene.brdf.model); }
+bool schlick(const Resolved& r) { return microfacet(r) && r.scene.brdf.fresnel == brdf::Fresnel::Schlick; }
+bool exactIndex(const Resolved& r) {
+    return microfacet(r) &&
+           (r.scene.brdf.fresnel == brdf::Fresnel::Dielectric || r.scene.brdf.fresnel == brdf::Fresnel::Conductor);
+}
+bool conductor(const Resolved& r) { return microfacet(r) && r.scene.brdf.fresnel == brdf::Fresnel::Conductor; }
+bool hasMaterial(const Resolved& r) { return builtin(r) && r.values.given("material"); }
+bool diffuse(const Resolved& r) { return builtin(r) && r.scene.brdf.diffuse != brdf::Diffuse::None; }
+bool orenNayar(const Resolved& r) { return builtin(r) && r.scene.brdf.diffuse == brdf::Diffuse::OrenNayar; }
+bool tabulated(const Resolved& r) { return builtin(r) && r.scene.brdf.model == Model::Tabulated; }
+bool brdfFile(const Resolved& r) { return bool(r.scene.brdfFile); }
+bool directional(const Resolved& r) { return r.scene.light.type == render::LightType::Directional; }
+bool point(const Resolved& r) { return r.scene.light.type == render::LightType::Point; }
+bool bumps(const Resolved& r) { return r.scene.surface.bumps; }
+bool fixedFraming(const Resolved& r) { return r.fovDeg > 0; }
+bool tolerance(const Resolved& r) { return r.tolerance > 0; }
+
+json rgb(const dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+const char* kModelHelp =
+    "specular model: phong | phong-classic (reflection lobes) | retro (retroreflective lobe about the light) | "
+    "blinn | gaussian | beckmann | ggx | tabulated (microfacet; tabulated: --ndf-table) | none (diffuse only)";
+
+std::vector<Param> build() {
+    using K = Kind;
+    using T = Table;
+    std::vector<Param> p;
+    auto add = [&](Param e) { p.push_back(std::move(e)); };
+    const std::string materials = join(brdf::materialNames());
+
+    // ---- [material] ----
+    add({"model", T::Material, K::Choice, "ggx", 0, 0, false, false, brdf::modelNames(), "", kModelHelp, "every scene",
+         nullptr, "model", [](const Resolved& r) -> json {
+             if (r.scene.brdfFile) return r.scene.brdfFile->path.substr(r.scene.brdfFile->path.rfind('/') + 1);
+             return brdf::toString(r.scene.brdf.model);
+         }});
+    add({"exponent", T::Material, K::Number, "1000", brdf::kMinExponent, brdf::kMaxExponent, false, false, {}, "",
+         "phong/phong-classic/blinn/retro exponent n", "phong, phong-classic, blinn, retro", usesExponent, "exponent",
+         [](const Resolved& r) -> json { return r.scene.brdf.exponent; }});
+    add({"roughness", T::Material, K::Number, "0.1", brdf::kMinRoughness, brdf::kMaxRoughness, false, false, {}, "",
+         "beckmann m / ggx alpha / gaussian m in radians (the formulas' symbols; alpha_x if anisotropic): 0 is a "
+         "perfect mirror, (0, 1e-7) is raised to 1e-7 with a warning",
+         "beckmann, ggx, gaussian", usesRoughness, "roughness",
+         [](const Resolved& r) -> json { return r.scene.brdf.roughness; }});
+    add({"roughness_y", T::Material, K::Number, "", brdf::kMinRoughness, brdf::kMaxRoughness, false, false, {}, "",
+         "anisotropic beckmann/ggx: alpha_y, as --roughness (absent: isotropic)", "anisotropic beckmann, ggx",
+         anisotropic, "roughness_y", [](const Resolved& r) -> json { return r.scene.brdf.alphaY(); }});
+    add({"tangent_angle", T::Material, K::Number, "0", -360, 360, false, false, {}, "deg",
+         "anisotropic (or a .brdf's X, Y): azimuth of the alpha_x axis from +x", "anisotropic beckmann, ggx; .brdf",
+         tangentFrame, "tangent_angle", [](const Resolved& r) -> json { return r.scene.brdf.tangentAngleDeg; }});
+    add({"fresnel", T::Material, K::Choice, "", 0, 0, false, false, brdf::fresnelNames(), "",
+         "none (F = 1) | schlick | dielectric | conductor (exact) | spectral (measured metal); default: the "
+         "material's, schlick when --f0 is given, else none",
+         "microfacet models", microfacet, "fresnel",
+         [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.fresnel); }});
+    add({"material", T::Material, K::Choice, "", 0, 0, false, false, brdf::materialNames(), "",
+         "Fresnel preset: " + materials + " (copper, gold: spectral)", "microfacet models", hasMaterial, "material",
+         [](const Resolved& r) -> json { return r.values.text("material"); }});
+    add({"eta", T::Material, K::Rgb, "", brdf::kMinEta, brdf::kMaxEta, false, false, {}, "",
+         "dielectric/conductor index eta = n_t/n_i (default: the material's, else 1.5)",
+         "fresnel dielectric, conductor", exactIndex, "eta",
+         [](const Resolved& r) -> json { return rgb(r.scene.brdf.eta); }});
+    add({"k", T::Material, K::Rgb, "", brdf::kMinK, brdf::kMaxK, false, false, {}, "",
+         "conductor extinction k (default: the material's, else 0)", "fresnel conductor", conductor, "k",
+         [](const Resolved& r) -> json { return rgb(r.scene.brdf.k); }});
+    add({"f0", T::Material, K::Rgb, "", 0, 1, false, false, {}, "",
+         "Schlick F0 (default: F(0) of --eta/--k or of the material, else 0.04)", "fresnel schlick", schlick, "f0",
+         [](const Resolved& r) -> json { return rgb(r.scene.brdf.f0); }});
+    add({"geometry", T::Material, K::Choice, "implicit", 0, 0, false, false, brdf::geometryNames(), "",
+         "none (G = 1) | implicit (G = cos_i cos_o) | cook-torrance (V-cavity) | smith-separable | smith "
+         "(height-correlated)",
+         "microfacet models", microfacet, "geometry",
+         [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.geometry); }});
+    add({"diffuse", T::Material, K::Choice, "none", 0, 0, false, false, brdf::diffuseNames(), "",
+         "none | lambert | oren-nayar, added to the specular lobe", "built-in models", builtin, "diffuse",
+         [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.diffuse); }});
+    add({"albedo", T::Material, K::Rgb, "0.5", 0, 1, false, false, {}, "", "diffuse albedo rho",
+         "diffuse lambert, oren-nayar", diffuse, "albedo",
+         [](const Resolved& r) -> json { return rgb(r.scene.brdf.albedo); }});
+    add({"sigma", T::Material, K::Number, "20", brdf::kMinSigmaDeg, brdf::kMaxSigmaDeg, false, false, {}, "deg",
+         "oren-nayar facet slope deviation", "diffuse oren-nayar", orenNayar, "sigma",
+         [](const Resolved& r) -> json { return r.scene.brdf.sigmaDeg; }});
+    add({"ndf_table", T::Material, K::Path, "", 0, 0, false, false, {}, "",
+         "tabulated: CSV of 'theta_h_deg, D' rows (theta_h from 0, increasing, <= 90; D >= 0), linear between rows, "
+         "normalized so that int D (n.h) dw = 1 (the factor is reported as ndf_table_normalization)",
+         "model tabulated", tabulated, "ndf_table", [](const Resolved& r) -> json { return r.scene.brdf.ndfTable->file; }});
+    add({"brdf", T::Material, K::Path, "", 0, 0, false, false, {}, "",
+         "a BRDF Explorer .brdf file (analytic): its GLSL BRDF() replaces --model and its terms (only "
+         "--tangent-angle still applies); no CPU twin, so measure frames blind and estimates its error from "
+         "resolution convergence",
+         "every scene", brdfFile, "brdf", [](const Resolved& r) -> json { return r.scene.brdfFile->path; }});
+    add({"param", T::Material, K::List, "", 0, 0, false, false, {}, "",
+         "a .brdf parameter, NAME=VALUE: float within its declared range, bool 0|1, color V or R,G,B; repeat the "
+         "flag or join several with commas (n=100,tint=1,0.5,0.2)",
+         "--brdf", brdfFile, "param", [](const Resolved& r) -> json {
+             std::vector<std::string> all;
+             for (const auto& a : r.values.list("param")) all.push_back(a.text);
+             return join(all, ",");
+         }});
+
+    // ---- [light] ----
+    add({"incidence", T::Light, K::Angles, "45", 0, 90, false, false, {}, "deg",
+         "angle of incidence theta_i: one angle (60), a list (0,30,60) or a range START:STOP:STEP (0:85:5); render "
+         "takes one",
+         "every scene", nullptr, "incidence_deg", [](const Resolved& r) -> json { return r.scene.light.incidenceDeg; }});
+    add({"azimuth", T::Light, K::Number, "0", -360, 360, false, false, {}, "deg", "light azimuth phi_i", "every scene",
+         nullptr, "azimuth_deg", [](const Resolved& r) -> json { return r.scene.light.azimuthDeg; }});
+    add({"light", T::Light, K::Choice, "directional", 0, 0, false, false, {"directional", "point"}, "",
+         "directional (distant, irradiance E) | point (intensity I, I cos / d^2)", "every scene", nullptr, "light",
+         [](const Resolved& r) -> json { return render::toString(r.scene.light.type); }});
+    add({"irradiance", T::Light, K::Number, "1", 0, 1e6, false, false, {}, "",
+         "light irradiance E (normal to the light)", "light directional", directional, "irradiance",
+         [](const Resolved& r) -> json { return r.scene.light.irradiance; }});
+    add({"intensity", T::Light, K::Number, "1", 0, 1e12, false, false, {}, "", "point light intensity I",
+         "light point", point, "intensity", [](const Resolved& r) -> json { return r.scene.light.intensity; }});
+    add({"light_distance", T::Light, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
+         "point light distance from the origin", "light point", point, "light_distance",
+         [](const Resolved& r) -> json { return r.scene.light.distance; }});
+
+    // ---- [camera] ----
+    add({"size", T::Camera, K::Size, "512", 1, 16384, false, false, {}, "px", "image size: PX or WxH", "every scene",
+         nullptr, "", nullptr});  // the row's size is the one rendered (measurement field `size`)
+    add({"fov", T::Camera, K::Number, "0", 0, 179, false, false, {}, "deg",
+         "field of view across the width; 0: the view's default (render: 30 measure, 40 photo) or automatic "
+         "framing (measure, at most 160 when fixed)",
+         "fixed framing", fixedFraming, "fov", [](const Resolved& r) -> json { return r.fovDeg; }});
+    add({"view", T::Camera, K::Choice, "measure", 0, 0, false, false, {"measure", "photo"}, "",
+         "render: measure (camera on the mirror direction) | photo (looking across the plane); measure always "
+         "uses the measurement view",
+         "render", nullptr, "", nullptr});
+    add({"elevation", T::Camera, K::Number, "0", 0, 90, false, false, {}, "deg",
+         "photo view: camera elevation; default (0) 90 - incidence", "render --view photo", nullptr, "", nullptr});
+    add({"distance", T::Camera, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
+         "eye distance from the origin (photo view; measurement view under a point light)", "light point; photo view",
+         point, "distance", [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
+    add({"gl_backend", T::Camera, K::Choice, "", 0, 0, false, false, {"auto", "osmesa", "egl"}, "",
+         "auto | osmesa | egl (default: $HILITE_GL_BACKEND, else auto)", "GL renders", nullptr, "", nullptr});
+    add({"shader_timeout", T::Camera, K::Number, "10", 1e-3, 3600, false, false, {}, "s",
+         "seconds a .brdf shader may take on a probe render in a child process, and on each compile and draw, "
+         "before it is stopped (exit 2)",
+         "--brdf", nullptr, "", nullptr});
+
+    // ---- [surface] ----
+    add({"bumps", T::Surface, K::Choice, "none", 0, 0, false, false, {"none", "explicit"}, "",
+         "none (flat: the analytic BRDF) | explicit (the material's beckmann/ggx NDF as a seeded bump field of "
+         "mirror facets, lit by a soft sun)",
+         "every scene", nullptr, "bumps", [](const Resolved& r) -> json { return r.scene.surface.bumps ? "explicit" : "none"; }});
+    add({"bump_period_px", T::Surface, K::Number, "4", render::kMinBumpPeriodPx, render::kMaxBumpPeriodPx, false,
+         false, {}, "px", "bump period in pixels of the view (at the image centre, across it)", "bumps explicit",
+         bumps, "bump_period_px", [](const Resolved& r) -> json { return r.scene.surface.bumpPeriodPx; }});
+    add({"bump_seed", T::Surface, K::Integer, "1", 0, 9007199254740992.0, false, false, {}, "",
+         "seed of the bump field", "bumps explicit", bumps, "bump_seed",
+         [](const Resolved& r) -> json { return r.scene.surface.seed; }});
+    add({"bump_samples", T::Surface, K::Integer, "0", 0, render::kMaxBumpSamples, false, false, {}, "",
+         "sub-pixel patches per axis; 0 = automatic (4 per bump period across the footprint)", "bumps explicit",
+         bumps, "bump_samples", [](const Resolved& r) -> json { return r.scene.surface.samples; }});
+    add({"sun", T::Surface, K::Number, "0.1", render::kMinSunDeg, render::kMaxSunDeg, false, false, {}, "deg",
+         "the light's angular standard deviation per axis (Gaussian sun)", "bumps explicit", bumps, "sun",
+         [](const Resolved& r) -> json { return r.scene.surface.sunDeg; }});
+    add({"bump_filter", T::Surface, K::Choice, "auto", 0, 0, false, false, {"auto", "supersample", "moments"}, "",
+         "how a pixel integrates its bumps: supersample (Gaussian mirror patches) | moments (the footprint's "
+         "realised slope moments, LEAN mapping: a prefilter; beckmann bumps) | auto (supersample while the centre "
+         "pixel needs <= 64 patches per axis, moments beyond; ggx bumps: always supersample)",
+         "bumps explicit", bumps, "bump_filter",
+         [](const Resolved& r) -> json { return render::toString(r.scene.surface.filter); }});
+    add({"prefilter_check", T::Surface, K::Switch, "false", 0, 0, false, false, {}, "",
+         "measure also renders the same frame with the moments prefilter and with the next seed, and reports the "
+         "prefilter's error against supersampling (prefilter_* fields)",
+         "bumps explicit", bumps, "prefilter_check",
+         [](const Resolved& r) -> json { return r.scene.surface.prefilterCheck; }});
+
+    // ---- [measurement] ----
+    add({"threshold", T::Measurement, K::Number, "0.5", 0, 1, true, true, {}, "",
+         "region = lobe >= FRAC x peak", "every measurement", nullptr, "threshold",
+         [](const Resolved& r) -> json { return r.setup.options.threshold; }});
+    add({"min_pixels", T::Measurement, K::Integer, "8", 1, 100000, false, false, {}, "px",
+         "under_resolved below this many pixels across the minor axis", "every measurement", nullptr, "min_pixels",
+         [](const Resolved& r) -> json { return r.setup.options.minPixelsAcross; }});
+    add({"boundary", T::Measurement, K::Choice, "subpixel", 0, 0, false, false, {"subpixel", "pixel"}, "",
+         "subpixel (contour pixels count their covered fraction) | pixel (in/out)", "every measurement", nullptr,
+         "boundary", [](const Resolved& r) -> json { return r.setup.options.subpixel ? "subpixel" : "pixel"; }});
+    add({"supersample", T::Measurement, K::Integer, "1", 1, 8, false, false, {}, "",
+         "N: render the final frame N x N times with jittered sub-pixel sample points and count each pixel's "
+         "covered fraction (replaces --boundary)",
+         "every measurement", nullptr, "supersample", [](const Resolved& r) -> json { return r.setup.supersample; }});
+    add({"renderer", T::Measurement, K::Choice, "gl", 0, 0, false, false, {"gl", "cpu"}, "",
+         "gl (float shader) | cpu (the double-precision twin on every core)", "every measurement", nullptr,
+         "renderer", [](const Resolved& r) -> json { return r.setup.cpu ? "cpu" : "gl"; }});
+    add({"crop", T::Measurement, K::Choice, "on", 0, 0, false, false, {"on", "off"}, "",
+         "on: automatic framing shades, reads and analyses only the region's box of the final frame (same numbers, "
+         "less time) | off: the whole frame",
+         "every measurement", nullptr, "crop", [](const Resolved& r) -> json { return r.setup.crop ? "on" : "off"; }});
+    add({"tolerance", T::Measurement, K::Number, "", kMinTolerance, kMaxTolerance, false, false, {}, "",
+         "E: choose the cheapest settings (size, sub-pixel boundary) predicted to reach aspect error E, check them "
+         "against the next finer size, report settings, error_estimate and time_ms; --size, --boundary, "
+         "--supersample, --fov are chosen, not read",
+         "measure", tolerance, "tolerance", [](const Resolved& r) -> json { return r.tolerance; }});
+    add({"reference", T::Measurement, K::Switch, "false", 0, 0, false, false, {}, "",
+         "use the CPU double-precision reference instead of GL", "measure", nullptr, "", nullptr});
+    return p;
+}
+
+std::string normalize(std::string name) {
+    if (name.rfind("--", 0) == 0) name = name.substr(2);
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+}
+
+}  // namespace
+
+const char* toString(Table t) {
+    switch (t) {
+        case Table::Material: return "material";
+        case Table::Light: return "light";
+        case Table::Camera: return "camera";
+        case Table::Surface: return "surface";
+        case Table::Measurement: return "measurement";
+    }
+    return "?";
+}
+
+const std::vector<Table>& tables() {
+    static const std::vector<Table> all = {Table::Material, Table::Light, Table::Camera, Table::Surface,
+                                           Table::Measurement};
+    return all;
+}
+
+std::optional<Table> parseTable(const std::string& s) {
+    for (Table t : tables())
+        if (s == toString(t)) return t;
+    return std::nullopt;
+}
+
+std::string Param::flag() const {
+    std::string f = name;
+    std::replace(f.begin(), f.end(), '_', '-');
+    return "--" + f;
+}
+
+std::string Param::key() const { return std::string(toString(table)) + "." + name; }
+
+std::string Param::allowed() const {
+    auto interval = [&] {
+        return std::string(openLo ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (openHi ? ")" : "]");
+    };
+    switch (kind) {
+        case Kind::Number:
+        case Kind::Integer: return interval();
+        case Kind::Choice: return join(choices, " | ");
+        case Kind::Rgb: return "V or R,G,B, each in " + interval();
+        case Kind::Switch: return "true | false";
+        case Kind::Path: return "a file";
+        case Kind::Angles: return "A, A,B,C or START:STOP:STEP, each in " + interval();
+        case Kind::Size: return "PX or WxH, each in " + interval();
+        case Kind::List: return "NAME=VALUE, repeated";
+    }
+    return "";
+}
+
+const std::vector<Param>& registry() {
+    static const std::vector<Param> all = build();
+    return all;
+}
+
+const Param* find(const std::string& name) {
+    const std::string n = normalize(name);
+    for (const Param& p : registry())
+        if (p.name == n) return &p;
+    return nullptr;
+}
+
+std::vector<std::string> names(Table t) {
+    std::vector<std::string> out;
+    for (const Param& p : registry())
+        if (p.table == t) out.push_back(p.name);
+    return out;
+}
+
+std::vector<std::string> columns() {
+    std::vector<std::string> out;
+    for (const Param& p : registry())
+        if (!p.column.empty()) out.push_back(p.column);
+    return out;
+}
+
+std::string markdownTable() {
+    auto escape = [](std::string s) {
+        for (size_t i = 0; (i = s.find('|', i)) != std::string::npos; i += 2) s.replace(i, 1, "\\|");
+        return s;
+    };
+    std::string t = "| flag | scene key | values | default | applies to | what it sets |\n|---|---|---|---|---|---|\n";
+    for (const Param& p : registry())
+        t += "| `" + p.flag() + "` | `" + p.key() + "` | " + escape(p.allowed() + (p.unit.empty() ? "" : " " + p.unit)) +
+             " | " + (p.def.empty() ? "-" : "`" + p.def + "`") + " | " + p.appliesTo + " | " + escape(p.help) + " |\n";
+    return t;
+}
+
+std::string check(const Param& p, const std::string& text) {
+    auto number = [&](const std::string& t, std::string& err) -> double {
+        const auto v = parseNumber(t);
+        if (!v) err = "'" + t + "' is not a number";
+        return v.value_or(0);
+    };
+    auto inRange = [&](double v) {
+        return std::isfinite(v) && (p.openLo ? v > p.lo : v >= p.lo) && (p.openHi ? v < p.hi : v <= p.hi);
+    };
+    std::string err;
+    switch (p.kind) {
+        case Kind::Number: {
+            const double v = number(text, err);
+            if (err.empty() && !inRange(v))
+                err = "must be a finite number in " + p.allowed() + " (got " + fmt(v) + ")";
+            break;
+        }
+        case Kind::Integer: {
+            const auto v = parseNumber(text);
+            if (!v || !inRange(*v) || *v != std::floor(*v))
+                err = "must be a whole number in " + p.allowed() + " (got '" + text + "')";
+            break;
+        }
+        case Kind::Choice:
+            if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end())
+                err = "unknown '" + text + "' (allowed: " + join(p.choices) + ")";
+            break;
+        case Kind::Rgb: {
+            const auto parts = split(text, ',');
+            if (parts.size() != 1 && parts.size() != 3) return "expected V or R,G,B (got '" + text + "')";
+            for (const auto& part : parts) {
+                const double v = number(part, err);
+                if (!err.empty()) break;
+                if (!inRange(v)) {
+                    err = "must be a finite number in " + p.allowed().substr(p.allowed().find('[')) +
+                          " (got " + fmt(v) + ")";
+                    break;
+                }
+            }
+            break;
+        }
+        case Kind::Switch:
+            if (text != "true" && text != "false") err = "expected true or false (got '" + text + "')";
+            break;
+        case Kind::Path:
+            if (text.empty()) err = "expected a file name";
+            break;
+        case Kind::Angles:  // the list and range syntax is checked by resolve (scene/resolve.cpp: parseAngles)
+        case Kind::Size:
+        case Kind::List: break;
+    }
+    return err;
+}
+
+}  // namespace hilite::scene

@@ -1,0 +1,84 @@
+#pragma once
+// The parameter registry: one entry per scene and measurement parameter (name, table, type, default,
+// range or choices, unit, help, which scenes it applies to, and the row column it fills from the
+// resolved scene). Everything else is derived from it: the CLI flags and their validators and help,
+// the scene-file tables and keys (with did-you-mean), experiment sweep keys, the result columns,
+// `explain --part scene` and the README's flag table (tests/scene/test_registry.cpp checks the README).
+// Adding a parameter is its entry here plus the code that uses it (scene/resolve.cpp and the consumer).
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hilite::scene {
+
+struct Resolved;  // scene/resolve.hpp
+
+/// The table of a scene file a parameter lives in ([material] roughness = 0.1).
+enum class Table { Material, Light, Camera, Surface, Measurement };
+const char* toString(Table);
+/// Every table, in the order scene files and help list them.
+const std::vector<Table>& tables();
+std::optional<Table> parseTable(const std::string&);
+
+/// How a parameter's text is read (and checked) before resolve() combines it with the others.
+enum class Kind {
+    Number,   ///< a finite number in [lo, hi] (the interval open where openLo / openHi say)
+    Integer,  ///< a whole number in [lo, hi]
+    Choice,   ///< one of `choices`
+    Rgb,      ///< V or R,G,B, each a finite number in [lo, hi]
+    Switch,   ///< true / false (a flag without a value on the command line)
+    Path,     ///< a file name; relative names in a scene file are read beside that file
+    Angles,   ///< one angle in [lo, hi], a list A,B,C or a range START:STOP:STEP (inclusive)
+    Size,     ///< PX or WxH, each a whole number in [lo, hi]
+    List,     ///< repeated NAME=VALUE assignments, in order (the .brdf --param)
+};
+
+struct Param {
+    std::string name;             ///< the scene-file key and the flag without dashes: roughness_y, --roughness-y
+    Table table;
+    Kind kind;
+    std::string def;              ///< the default as text; "" = unset (derived or optional, see help)
+    double lo = 0, hi = 0;        ///< Number, Integer, Rgb, Angles, Size
+    bool openLo = false, openHi = false;
+    std::vector<std::string> choices;  ///< Choice
+    std::string unit;             ///< "deg", "px", "s", "" for none
+    std::string help;
+    std::string appliesTo;        ///< in words: the scenes the parameter means something for (help, README)
+    /// Whether the resolved scene uses the parameter (its row carries it); null: every scene.
+    bool (*applies)(const Resolved&) = nullptr;
+    /// The row column and its value as resolved and rendered; column "": not a row field (a setting of the
+    /// run, such as the GL backend).
+    std::string column;
+    nlohmann::json (*value)(const Resolved&) = nullptr;
+
+    /// "--roughness-y"
+    std::string flag() const;
+    /// "material.roughness_y"
+    std::string key() const;
+    /// The allowed values in words: "[0, 10]", "ggx, beckmann, ...", "V or R,G,B in [0, 1]".
+    std::string allowed() const;
+    /// Whether the resolved scene uses it (its row carries it).
+    bool usedBy(const Resolved& r) const { return !applies || applies(r); }
+};
+
+/// Every parameter, in the order of help, scene files and result columns.
+const std::vector<Param>& registry();
+/// The parameter named `name` (a key: "roughness_y"; a flag: "--roughness-y"), or null.
+const Param* find(const std::string& name);
+/// The names of the parameters of a table (for did-you-mean and messages).
+std::vector<std::string> names(Table t);
+/// Every row column the registry fills, in order.
+std::vector<std::string> columns();
+
+/// The registry as the README's markdown table (flag, scene key, values, default, applies to, help);
+/// `hilite explain --part flags` prints it and a test compares it with the README.
+std::string markdownTable();
+
+/// Checks one value as the parameter's kind reads it: "" when valid, else what is wrong and what is
+/// allowed ("must be a finite number in [0, 10] (got -3)"); callers put the flag or file:line: key first.
+std::string check(const Param& p, const std::string& text);
+
+}  // namespace hilite::scene

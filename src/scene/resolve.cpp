@@ -1,0 +1,356 @@
+#include "scene/resolve.hpp"
+
+#include "brdf/materials.hpp"
+#include "brdf/ndf_table.hpp"
+#include "brdf/spectral.hpp"
+#include "core/error.hpp"
+#include "core/text.hpp"
+#include "render/bumps.hpp"
+#include "render/shader_source.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <iostream>
+#include <ostream>
+#include <set>
+
+namespace hilite::scene {
+
+namespace {
+
+/// Prints "hilite: warning: MSG" on stderr, once per process for each message (a sweep repeats them).
+void warnOnce(const std::string& msg) {
+    static std::set<std::string> said;
+    if (said.insert(msg).second) std::cerr << "hilite: warning: " << msg << "\n";
+}
+
+/// Reads the values of one resolve(): each parameter checked by its registry entry, errors naming where
+/// the value came from.
+class Reader {
+public:
+    explicit Reader(const Values& v) : m_v(v) {}
+    const Values& values() const { return m_v; }
+    bool given(const char* name) const { return m_v.given(name); }
+    std::string where(const char* name) const { return m_v.where(name); }
+    /// The checked text of a parameter (given or default).
+    std::string text(const char* name) const {
+        const Param& p = param(name);
+        const std::string t = m_v.text(name);
+        if (!t.empty() || m_v.given(name))
+            if (const std::string err = check(p, t); !err.empty()) throw InputError(where(name) + ": " + err);
+        return t;
+    }
+    double number(const char* name) const {
+        const std::string t = text(name);
+        return t.empty() ? 0.0 : *parseNumber(t);
+    }
+    dvec3 rgb(const char* name) const {
+        const auto parts = split(text(name), ',');
+        dvec3 v;
+        for (int c = 0; c < 3; ++c) v[c] = *parseNumber(parts[parts.size() == 1 ? 0 : size_t(c)]);
+        return v;
+    }
+    bool flag(const char* name) const { return text(name) == "true"; }
+    /// "0:85:5", "0,30,60" or "30", each angle checked against the entry's range.
+    std::vector<double> angles(const char* name) const;
+    void size(const char* name, int& width, int& height) const;
+
+private:
+    static const Param& param(const char* name) {
+        const Param* p = find(name);
+        if (!p) throw std::logic_error(std::string("scene: no parameter '") + name + "' in the registry");
+        return *p;
+    }
+    const Values& m_v;
+};
+
+std::vector<double> Reader::angles(const char* name) const {
+    const Param& p = param(name);
+    const std::string s = m_v.text(name), w = where(name);
+    auto angle = [&](const std::string& t) {
+        const auto v = parseNumber(t);
+        if (!v) throw InputError(w + ": '" + t + "' is not a number");
+        if (!std::isfinite(*v) || *v < p.lo || *v > p.hi)
+            throw InputError(w + ": must be a finite number in [" + fmt(p.lo) + ", " + fmt(p.hi) + "] (got " + fmt(*v) + ")");
+        return *v;
+    };
+    std::vector<double> out;
+    if (s.find(':') != std::string::npos) {
+        const auto parts = split(s, ':');
+        if (parts.size() != 3) throw InputError(w + ": a range is START:STOP:STEP (got '" + s + "')");
+        const double a = angle(parts[0]), b = angle(parts[1]);
+        const auto step = parseNumber(parts[2]);
+        if (!step) throw InputError(w + ": '" + parts[2] + "' is not a number");
+        if (!(*step > 0) || b < a) throw InputError(w + ": range needs START <= STOP and STEP > 0 (got '" + s + "')");
+        const double n = std::floor((b - a) / *step + 1e-9);
+        if (!(n <= 100000)) throw InputError(w + ": more than 100000 angles in '" + s + "'");
+        for (long i = 0; i <= long(n); ++i) out.push_back(a + double(i) * *step);
+    } else {
+        for (const auto& part : split(s, ',')) out.push_back(angle(part));
+    }
+    if (out.empty()) throw InputError(w + ": no angle given");
+    return out;
+}
+
+void Reader::size(const char* name, int& width, int& height) const {
+    const Param& p = param(name);
+    const std::string s = m_v.text(name), w = where(name);
+    const auto x = s.find('x');
+    const auto a = parseNumber(s.substr(0, x));
+    const auto b = x == std::string::npos ? a : parseNumber(s.substr(x + 1));
+    for (const auto& v : {a, b})
+        if (!v || !(*v >= p.lo && *v <= p.hi) || *v != std::floor(*v))
+            throw InputError(w + ": each side must be a whole number in [" + fmt(p.lo) + ", " + fmt(p.hi) + "] (got '" +
+                             s + "')");
+    width = int(*a);
+    height = int(*b);
+    // Colour + depth attachments and the readback: 36 bytes a pixel. Refuse what the machine cannot hold.
+    const double bytes = 36.0 * double(width) * double(height);
+    const double avail = double(sysconf(_SC_AVPHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    if (avail > 0 && bytes > 0.8 * avail)
+        throw InputError(w + ": " + s + " needs " + fmt(bytes / 1e9) + " GB, more than this machine has free");
+}
+
+/// A roughness: 0 is a perfect mirror (the measurement says `mirror`); values in (0, 1e-7) are raised to
+/// 1e-7 with a warning (brdf::kMinNonzeroRoughness: float32 cannot render narrower lobes). `used`: the
+/// model takes a roughness (else the value is only checked).
+double roughness(const Reader& in, const char* name, bool used) {
+    const double v = in.number(name);
+    if (!used) return v;
+    const std::string w = in.where(name);
+    if (v == 0.0)
+        warnOnce(w + " 0 is a perfect mirror: its lobe is a delta no pixel can sample, rendered black and measured "
+                     "as 'mirror'");
+    if (v > 0.0 && v < brdf::kMinNonzeroRoughness) {
+        warnOnce(w + " " + fmt(v) + " raised to " + fmt(brdf::kMinNonzeroRoughness) +
+                 ", the narrowest lobe float32 can render (it is already 'effectively_mirror')");
+        return brdf::kMinNonzeroRoughness;
+    }
+    return v;
+}
+
+/// Fresnel: a material names a mode and its constants; fresnel, eta, k, f0 override them.
+void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
+    using brdf::Fresnel;
+    const std::string materialName = in.text("material");
+    const brdf::Material* mat = materialName.empty() ? nullptr : brdf::findMaterial(materialName);
+    const bool eta = in.given("eta"), k = in.given("k"), f0 = in.given("f0");
+    // An F0 without a named mode asks for Schlick, the only mode that takes one.
+    p.fresnel = in.given("fresnel") ? *brdf::parseFresnel(in.text("fresnel"))
+                : mat              ? mat->fresnel
+                : f0               ? Fresnel::Schlick
+                                   : Fresnel::None;
+    if (mat && brdf::hasSpectralData(mat->name)) {
+        p.spectrum = brdf::loadSpectrum(render::dataDirectory(), mat->name, spectralStepNm);
+        // The metal's RGB stand-ins for the other modes: eta, k at 650 / 550 / 450 nm, F0 = spectral F(0).
+        for (int c = 0; c < 3; ++c) {
+            const dvec2 ek = p.spectrum->etaK(650.0 - 100.0 * c);
+            p.eta[c] = ek.x;
+            p.k[c] = ek.y;
+        }
+        p.f0 = brdf::F_Spectral(1.0, *p.spectrum);
+    } else if (mat) {
+        p.eta = mat->eta, p.k = mat->k, p.f0 = mat->f0;
+    }
+    const std::string fresnelName = brdf::toString(p.fresnel), w = in.where("fresnel");
+    if (mat && mat->fresnel == Fresnel::Schlick && (p.fresnel == Fresnel::Dielectric || p.fresnel == Fresnel::Conductor))
+        throw InputError(w + " " + fresnelName + ": " + mat->name + " has an F0 preset only (use schlick)");
+    if (mat && mat->fresnel != Fresnel::Dielectric && p.fresnel == Fresnel::Dielectric)
+        throw InputError(w + " dielectric: " + mat->name + " is a metal (use conductor, schlick or spectral)");
+    if (p.fresnel == Fresnel::Spectral && !p.spectrum)
+        throw InputError(w + " spectral: needs --material copper or gold (the measured spectra)");
+    if ((eta || k) && p.fresnel == Fresnel::Spectral)
+        throw InputError(in.where(eta ? "eta" : "k") + ": not used by --fresnel spectral (the material's spectrum is)");
+    if (k && p.fresnel == Fresnel::Dielectric) throw InputError(in.where("k") + ": only for --fresnel conductor");
+    if (eta) p.eta = in.rgb("eta");
+    if (k) p.k = in.rgb("k");
+    if (f0 && p.fresnel != Fresnel::Schlick)
+        throw InputError(in.where("f0") + ": only for --fresnel schlick (--fresnel " + fresnelName +
+                         (p.fresnel == Fresnel::Spectral ? " uses the material's measured eta, k)" : " does not use F0)"));
+    if (f0)
+        p.f0 = in.rgb("f0");
+    else if (eta || k)  // Schlick's F0 of the index given
+        for (int c = 0; c < 3; ++c) p.f0[c] = brdf::F_Conductor(1.0, p.eta[c], p.k[c]);
+}
+
+brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) {
+    brdf::Params p;
+    p.model = *brdf::parseModel(in.text("model"));
+    p.exponent = in.number("exponent");
+    const bool usesRoughness = p.model != brdf::Model::None && !brdf::usesExponent(p.model);
+    if (purpose == Purpose::Brdf && usesRoughness && brdf::isMicrofacet(p.model)) {
+        // The quadrature of `brdf albedo` resolves lobes down to kMinIntegrableRoughness; a mirror would
+        // integrate to a silent 0.
+        const double v = in.number("roughness");
+        if (v < brdf::kMinIntegrableRoughness)
+            throw InputError(in.where("roughness") + ": must be a finite number in [" +
+                             fmt(brdf::kMinIntegrableRoughness) + ", " + fmt(brdf::kMaxRoughness) + "] (got " + fmt(v) +
+                             ")");
+    }
+    p.roughness = roughness(in, "roughness", usesRoughness);
+    if (in.given("roughness_y")) {
+        if (!brdf::allowsAnisotropy(p.model))
+            throw InputError(in.where("roughness_y") + ": anisotropy needs --model beckmann or ggx (got '" +
+                             in.text("model") + "')");
+        p.roughnessY = roughness(in, "roughness_y", true);
+        if (purpose == Purpose::Brdf && *p.roughnessY < brdf::kMinIntegrableRoughness)
+            throw InputError(in.where("roughness_y") + ": must be a finite number in [" +
+                             fmt(brdf::kMinIntegrableRoughness) + ", " + fmt(brdf::kMaxRoughness) + "] (got " +
+                             fmt(*p.roughnessY) + ")");
+    }
+    p.tangentAngleDeg = in.number("tangent_angle");
+    const bool table = in.given("ndf_table");
+    if (p.model == brdf::Model::Tabulated && !table)
+        throw InputError(in.where("model") + " tabulated: needs --ndf-table FILE (rows 'theta_h_deg, D')");
+    if (table && p.model != brdf::Model::Tabulated)
+        throw InputError(in.where("ndf_table") + ": the table is the NDF of --model tabulated (got --model " +
+                         in.text("model") + ")");
+    if (table) p.ndfTable = brdf::loadNdfTable(in.text("ndf_table"));
+    p.geometry = *brdf::parseGeometry(in.text("geometry"));
+    p.diffuse = *brdf::parseDiffuse(in.text("diffuse"));
+    p.albedo = in.rgb("albedo");
+    p.sigmaDeg = in.number("sigma");
+    resolveFresnel(in, p, spectralStepNm);
+    return p;
+}
+
+render::Surface resolveSurface(const Reader& in) {
+    render::Surface s;
+    s.bumps = in.text("bumps") == "explicit";
+    s.bumpPeriodPx = in.number("bump_period_px");
+    s.seed = uint64_t(in.number("bump_seed"));
+    s.samples = int(in.number("bump_samples"));
+    s.sunDeg = in.number("sun");
+    const std::string filter = in.text("bump_filter");
+    s.filter = filter == "supersample" ? render::BumpFilter::Supersample
+               : filter == "moments"   ? render::BumpFilter::Moments
+                                       : render::BumpFilter::Auto;
+    s.prefilterCheck = in.flag("prefilter_check");
+    return s;
+}
+
+/// The scene's cross-parameter rules: what a .brdf file and a bump field can be combined with.
+void checkScene(const Reader& in, const render::Scene& s) {
+    if (in.given("param") && !s.brdfFile)
+        throw InputError(in.where("param") + ": only with --brdf FILE (built-in models take --exponent, --roughness, ...)");
+    if (!s.surface.bumps) return;
+    const std::string w = in.where("bumps");
+    if (s.brdfFile)
+        throw InputError(w + ": the bump field's facets are mirrors with a known slope distribution; a .brdf file's "
+                             "BRDF() has none (drop --brdf or --bumps)");
+    render::bumpSpec(s);  // the material must have a slope distribution (InputError naming --bumps)
+    if (s.brdf.diffuse != brdf::Diffuse::None) throw InputError(w + ": the bump render is specular only (drop --diffuse)");
+    if (s.surface.filter == render::BumpFilter::Moments && s.brdf.model != brdf::Model::Beckmann)
+        throw InputError(in.where("bump_filter") +
+                         " moments: the prefilter's Gaussian is the slope distribution of beckmann bumps only (ggx "
+                         "bumps are a remapped normal map; use supersample or auto)");
+}
+
+/// The measurement's own rules: which accuracy knobs combine with the reference, a .brdf and bumps.
+void checkMeasurement(const Reader& in, const Resolved& r) {
+    const render::Scene& scene = r.scene;
+    if (r.reference && scene.surface.bumps)
+        throw InputError("--reference: the CPU reference evaluates the analytic BRDF (drop --bumps explicit)");
+    if (r.reference && scene.brdfFile)
+        throw InputError("--reference: no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU); the GL "
+                         "measurement reports error_estimate from resolution convergence instead");
+    if (r.tolerance > 0 && r.reference)
+        throw InputError(in.where("tolerance") + ": not with --reference (the reference has no settings to choose)");
+    if (scene.brdfFile && r.setup.cpu)
+        throw InputError(in.where("renderer") + " cpu: the CPU path cannot run a .brdf file's GLSL (use --renderer gl)");
+    if (scene.brdfFile && r.setup.supersample > 1)
+        throw InputError(in.where("supersample") + ": a .brdf file is framed blind and measured at one sample per "
+                                                   "pixel with the sub-pixel boundary (its error estimate comes from "
+                                                   "resolution convergence)");
+    if (scene.brdfFile && r.tolerance > 0)
+        throw InputError(in.where("tolerance") + ": needs the CPU twin to estimate errors, which a .brdf file does not "
+                                                 "have (its measurement reports error_estimate from resolution "
+                                                 "convergence instead)");
+    // A bump field renders on the GL path only; the CPU path would silently measure the analytic BRDF instead.
+    if (scene.surface.bumps && r.setup.cpu)
+        throw InputError(in.where("renderer") + " cpu: the CPU path renders the analytic BRDF, not a bump field (drop "
+                                                "--bumps explicit, or use --renderer gl)");
+    // --tolerance predicts the error of a size from the analytic lobe's convergence; a bump field's image changes
+    // with the size itself (its period is set in pixels), so the prediction would not hold.
+    if (scene.surface.bumps && r.tolerance > 0)
+        throw InputError(in.where("tolerance") + ": calibrated on analytic lobes; a bump field's render changes with "
+                                                 "the size (--bump-period-px is in pixels): choose --size and "
+                                                 "--bump-samples instead");
+}
+
+}  // namespace
+
+Resolved resolve(const Values& values, Purpose purpose) {
+    const Reader in(values);
+    Resolved r;
+    r.values = values;
+    r.spectralStepNm = purpose == Purpose::Brdf ? brdf::kFullStepNm : 5;
+    render::Scene& s = r.scene;
+    s.brdf = resolveBrdf(in, purpose, r.spectralStepNm);
+    r.shaderTimeoutS = in.number("shader_timeout");
+    if (in.given("brdf")) {
+        auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(in.text("brdf")));
+        for (const auto& a : values.list("param")) brdf_file::assign(*file, a.text);
+        s.brdfFile = std::move(file);
+    }
+    s.light.azimuthDeg = in.number("azimuth");
+    s.light.irradiance = in.number("irradiance");
+    s.light.type = in.text("light") == "point" ? render::LightType::Point : render::LightType::Directional;
+    s.light.intensity = in.number("intensity");
+    s.light.distance = in.number("light_distance");
+    s.eyeDistance = in.number("distance");
+    s.surface = resolveSurface(in);
+    checkScene(in, s);
+    r.angles = in.angles("incidence");
+    s.light.incidenceDeg = r.angles.front();
+
+    in.size("size", r.setup.width, r.setup.height);
+    r.fovDeg = in.number("fov");
+    if (purpose == Purpose::Measure && r.fovDeg > 160)
+        throw InputError(in.where("fov") + ": fixed framing takes a field of view in (0, 160] (got " + fmt(r.fovDeg) + ")");
+    r.setup.fovDeg = r.fovDeg;
+    r.view = in.text("view") == "photo" ? View::Photo : View::Measure;
+    r.elevationDeg = in.number("elevation");
+    r.backend = in.text("gl_backend");
+    r.setup.options.threshold = in.number("threshold");
+    r.setup.options.minPixelsAcross = int(in.number("min_pixels"));
+    r.setup.options.subpixel = in.text("boundary") == "subpixel";
+    r.setup.supersample = int(in.number("supersample"));
+    r.setup.cpu = in.text("renderer") == "cpu";
+    r.setup.crop = in.text("crop") == "on";
+    r.tolerance = in.given("tolerance") ? in.number("tolerance") : 0.0;
+    r.reference = in.flag("reference");
+    if (purpose == Purpose::Measure) checkMeasurement(in, r);
+    return r;
+}
+
+gl::Backend backendOf(const Resolved& r) {
+    if (r.backend.empty()) return gl::backendFromEnvironment();
+    if (auto b = gl::parseBackend(r.backend)) return *b;
+    throw InputError("--gl-backend: unknown '" + r.backend + "' (allowed: auto, osmesa, egl)");
+}
+
+PinholeCamera viewCamera(const Resolved& r, View view, int width, int height) {
+    const render::Scene& scene = r.scene;
+    if (view == View::Measure) {
+        const double fov = r.fovDeg > 0 ? r.fovDeg : 30.0;
+        const MirrorChart chart = scene.light.chart();
+        // Keep the camera above the plane when the mirror direction is at the horizon.
+        dvec3 center = chart.wr();
+        if (center.z < 1e-6) center = glm::normalize(dvec3(center.x, center.y, 1e-6));
+        return PinholeCamera::measurementFrom(chart, render::eyePosition(scene), center, fov, width, height);
+    }
+    const double elevation = r.elevationDeg > 0 ? r.elevationDeg : std::max(0.5, 90.0 - scene.light.incidenceDeg);
+    const double fov = r.fovDeg > 0 ? r.fovDeg : 40.0;
+    return PinholeCamera::photo(elevation, scene.light.azimuthDeg + 180.0, scene.eyeDistance, fov, width, height);
+}
+
+nlohmann::json parameterColumns(const Resolved& r) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const Param& p : registry())
+        if (!p.column.empty() && p.usedBy(r)) j[p.column] = p.value(r);
+    return j;
+}
+
+}  // namespace hilite::scene

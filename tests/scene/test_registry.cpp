@@ -1,0 +1,79 @@
+// The parameter registry: every entry well-formed, its defaults valid by its own check, the CLI flags and
+// scene-file keys derived from it, and the README's flag table equal to it.
+
+#include "scene/registry.hpp"
+#include "scene/resolve.hpp"
+#include "scene/scene_file.hpp"
+
+#include "core/error.hpp"
+
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+using namespace hilite;
+
+TEST_CASE("scene::registry entries are complete and their defaults pass their own checks") {
+    std::set<std::string> names, columns;
+    for (const scene::Param& p : scene::registry()) {
+        CAPTURE(p.name);
+        CHECK(names.insert(p.name).second);
+        CHECK(!p.help.empty());
+        CHECK(!p.appliesTo.empty());
+        CHECK(p.column.empty() == (p.value == nullptr));
+        if (!p.column.empty()) CHECK(columns.insert(p.column).second);
+        if (p.kind == scene::Kind::Choice) CHECK(!p.choices.empty());
+        if (!p.def.empty()) CHECK(scene::check(p, p.def) == "");
+        CHECK((scene::find(p.flag()) == &p));
+    }
+    CHECK((scene::resolve(scene::Values{}).scene.brdf.model == brdf::Model::GGX));
+}
+
+TEST_CASE("scene::check refuses bad values with the allowed ones named") {
+    const scene::Param& r = *scene::find("roughness");
+    CHECK(scene::check(r, "-3") == "must be a finite number in [0, 10] (got -3)");
+    CHECK(scene::check(r, "") == "'' is not a number");
+    CHECK(scene::check(r, "nan").find("must be a finite number") == 0);
+    CHECK(scene::check(*scene::find("model"), "gxx").find("allowed: phong") != std::string::npos);
+    CHECK(scene::check(*scene::find("f0"), "0.1,0.2") == "expected V or R,G,B (got '0.1,0.2')");
+    CHECK(scene::check(*scene::find("threshold"), "1") != "");
+    CHECK(scene::check(*scene::find("min_pixels"), "2.5") != "");
+    CHECK(scene::check(*scene::find("min_pixels"), "3") == "");
+}
+
+TEST_CASE("scene::resolve names the scene file, line and key of a bad value") {
+    const scene::Values v = scene::parseSceneToml("[material]\nmodel = \"beckmann\"\nroughness = 11\n", "s.toml");
+    try {
+        scene::resolve(v);
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()) == "s.toml:3: material.roughness: must be a finite number in [0, 10] (got 11)");
+    }
+    CHECK_THROWS_AS(scene::parseSceneToml("[light]\nroughness = 0.1\n", "s.toml"), InputError);  // wrong table
+}
+
+TEST_CASE("scene::resolve clamps a roughness below float's reach and the row carries the clamped value") {
+    scene::Values v;
+    v.set("roughness", "1e-9");
+    v.set("roughness_y", "1e-9");
+    const scene::Resolved r = scene::resolve(v);
+    CHECK(r.scene.brdf.roughness == 1e-7);
+    CHECK(*r.scene.brdf.roughnessY == 1e-7);
+    const nlohmann::json row = scene::parameterColumns(r);
+    CHECK(row["roughness"].get<double>() == 1e-7);
+    CHECK(row["roughness_y"].get<double>() == 1e-7);
+}
+
+TEST_CASE("README's flag table is the registry's (hilite explain --part flags)") {
+    std::ifstream in(std::string(HILITE_SOURCE_DIR_STR) + "/README.md");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string readme = ss.str();
+    const std::string begin = "<!-- flags:begin (hilite explain --part flags) -->\n", end = "<!-- flags:end -->";
+    const auto a = readme.find(begin), b = readme.find(end);
+    REQUIRE(a != std::string::npos);
+    REQUIRE(b != std::string::npos);
+    CHECK(readme.substr(a + begin.size(), b - a - begin.size()) == scene::markdownTable());
+}
