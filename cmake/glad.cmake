@@ -8,5 +8,6 @@ add_custom_command(
   COMMAND ${GLAD_EXECUTABLE} --quiet --reproducible --api gl:core=4.5 --extensions= --out-path ${GLAD_OUT} c
   COMMENT "Generating the GL 4.5 core loader with glad")
 add_library(hilite_glad STATIC ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/include/glad/gl.h)
-target_include_directories(hilite_glad SYSTEM PUBLIC ${GLAD_OUT}/include)
+# Its header stays in the build tree (no installed hilite header includes it); the library is installed.
+target_include_directories(hilite_glad SYSTEM PUBLIC $<BUILD_INTERFACE:${GLAD_OUT}/include>)
 set_target_properties(hilite_glad PROPERTIES POSITION_INDEPENDENT_CODE ON)

@@ -41,8 +41,10 @@ std::string readFile(const std::string& path) {
     return ss.str();
 }
 
-/// The first of $env, <exe>/../share/hilite/<sub> and installDir that holds `probe`; never the
-/// current directory. Throws SystemError listing the places tried.
+/// The first of $env, $HILITE_SHARE_DIR/<sub>, <exe>/../share/hilite/<sub> and installDir that holds
+/// `probe`; never the current directory. Throws SystemError listing the places tried. installDir (the
+/// install prefix compiled in) is what a program linked against the installed library finds: its
+/// executable is anywhere, not in <prefix>/bin.
 std::string findDirectory(const char* env, const std::string& sub, const std::string& installDir,
                           const std::string& probe, const std::string& what) {
     auto holds = [&](const std::string& dir) { return std::ifstream(dir + "/" + probe).good(); };
@@ -50,6 +52,11 @@ std::string findDirectory(const char* env, const std::string& sub, const std::st
     if (const char* e = std::getenv(env); e && *e) {
         if (holds(e)) return e;
         tried.push_back(std::string(e) + " ($" + env + ")");
+    }
+    if (const char* e = std::getenv("HILITE_SHARE_DIR"); e && *e) {
+        const std::string dir = std::string(e) + "/" + sub;
+        if (holds(dir)) return dir;
+        tried.push_back(dir + " ($HILITE_SHARE_DIR)");
     }
     const std::string exe = executableDirectory();
     for (const std::string& dir : {exe + "/../share/hilite/" + sub, installDir}) {

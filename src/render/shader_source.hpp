@@ -14,11 +14,13 @@ namespace hilite::render {
 
 enum class Output { Color, Measure };
 
-/// Where the shader files are: $HILITE_SHADER_DIR, else <exe>/../share/hilite/shaders, else the
-/// install prefix. Never the current directory. Throws SystemError listing the places tried.
+/// Where the shader files are: $HILITE_SHADER_DIR, else $HILITE_SHARE_DIR/shaders, else
+/// <exe>/../share/hilite/shaders, else the install prefix compiled in (HILITE_INSTALL_SHADER_DIR: what a
+/// program linked against the installed library finds). Never the current directory. Throws
+/// SystemError listing the places tried.
 std::string shaderDirectory();
 /// Where the data files are (data/ of the source tree: metals/, colorimetry/), found the same way:
-/// $HILITE_DATA_DIR, else <exe>/../share/hilite/data, else the install prefix.
+/// $HILITE_DATA_DIR, else $HILITE_SHARE_DIR/data, else <exe>/../share/hilite/data, else the install prefix.
 std::string dataDirectory();
 
 /// The text of a shader file; SystemError naming it when it cannot be read.

@@ -1,0 +1,94 @@
+# ctest downstream_install (label install): hilite installed and used by other projects.
+#   cmake -DHILITE_BUILD_DIR=... -DWORK_DIR=... -DCXX=... -DGENERATOR=... [-DCONFIGURED_SHARE_DIR=...] -P run_downstream.cmake
+# 1. cmake --install HILITE_BUILD_DIR to WORK_DIR/prefix (a fresh one each run), and checks the tree;
+# 2. configures and builds tests/downstream (find_package(hilite), doctest) against it, runs its ctest;
+# 3. builds pkgconfig_consumer.cpp with `pkg-config --cflags --libs hilite` alone, and runs it.
+cmake_minimum_required(VERSION 3.20)
+foreach(v HILITE_BUILD_DIR WORK_DIR CXX GENERATOR)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "run_downstream.cmake: -D${v}=... is required")
+  endif()
+endforeach()
+set(src ${CMAKE_CURRENT_LIST_DIR})
+set(prefix ${WORK_DIR}/prefix)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+string(TIMESTAMP t0 "%s")
+macro(step what)
+  string(TIMESTAMP _now "%s")
+  math(EXPR _dt "${_now} - ${t0}")
+  message(STATUS "[${_dt} s] ${what}")
+endmacro()
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    list(JOIN ARGN " " cmd)
+    message(FATAL_ERROR "failed (${rc}): ${cmd}")
+  endif()
+endfunction()
+
+# -- 1. Install, then check what the tree holds.
+step("cmake --install ${HILITE_BUILD_DIR} --prefix ${prefix}")
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${HILITE_BUILD_DIR} --prefix ${prefix}
+  RESULT_VARIABLE rc OUTPUT_FILE ${WORK_DIR}/install.log ERROR_FILE ${WORK_DIR}/install.err)
+if(NOT rc EQUAL 0)
+  file(READ ${WORK_DIR}/install.err err)
+  message(FATAL_ERROR "cmake --install failed (${rc}):\n${err}")
+endif()
+foreach(f bin/hilite lib/cmake/hilite/hiliteConfig.cmake lib/cmake/hilite/hiliteConfigVersion.cmake
+          lib/cmake/hilite/hiliteTargets.cmake lib/pkgconfig/hilite.pc lib/libhilite_core.a lib/libhilite_glad.a
+          include/hilite/hilite.hpp include/hilite/version.hpp share/hilite/shaders/brdf.glsl
+          share/hilite/data/colorimetry/cie1931_2deg_cmf.csv)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "not installed: ${prefix}/${f}")
+  endif()
+endforeach()
+foreach(f lib/libhilite_cli.a include/hilite/cli)
+  if(EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "installed, but private to the executable: ${prefix}/${f}")
+  endif()
+endforeach()
+# Every project include of an installed header resolves inside the installed tree (no header of a layer
+# left out, e.g. the CLI's).
+file(GLOB_RECURSE headers ${prefix}/include/hilite/*.hpp)
+foreach(h IN LISTS headers)
+  file(STRINGS ${h} includes REGEX "^#include \"")
+  foreach(line IN LISTS includes)
+    string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" inc "${line}")
+    if(NOT EXISTS ${prefix}/include/hilite/${inc} AND NOT EXISTS ${prefix}/include/${inc})
+      message(FATAL_ERROR "${h} includes \"${inc}\", which is not installed")
+    endif()
+  endforeach()
+endforeach()
+list(LENGTH headers nheaders)
+step("installed tree checked (${nheaders} headers)")
+
+# -- 2. The CMake package: find_package(hilite 0.1 REQUIRED), hilite::hilite, doctest.
+run(${CMAKE_COMMAND} -S ${src} -B ${WORK_DIR}/cmake-consumer -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${prefix} -DHILITE_CONFIGURED_SHARE_DIR=${CONFIGURED_SHARE_DIR})
+step("downstream project configured")
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/cmake-consumer -j2)
+step("downstream project built")
+execute_process(COMMAND ${CMAKE_CTEST_COMMAND} --output-on-failure -V --no-tests=error
+  WORKING_DIRECTORY ${WORK_DIR}/cmake-consumer RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the downstream project's test failed (${rc})")
+endif()
+step("downstream project's test passed")
+
+# -- 3. pkg-config alone.
+find_program(PKG_CONFIG NAMES pkg-config pkgconf REQUIRED)
+execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${prefix}/lib/pkgconfig
+                        ${PKG_CONFIG} --cflags --libs hilite
+  RESULT_VARIABLE rc OUTPUT_VARIABLE flags ERROR_VARIABLE err OUTPUT_STRIP_TRAILING_WHITESPACE)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "pkg-config --cflags --libs hilite failed (${rc}): ${err}")
+endif()
+message(STATUS "pkg-config --cflags --libs hilite: ${flags}")
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run(${CXX} -std=c++17 -O2 ${src}/pkgconfig_consumer.cpp ${flags} -o ${WORK_DIR}/pkgconfig_consumer)
+step("pkg-config consumer built")
+run(${CMAKE_COMMAND} -E env HILITE_SHARE_DIR=${prefix}/share/hilite MESA_SHADER_CACHE_DISABLE=true
+    ${WORK_DIR}/pkgconfig_consumer)
+step("pkg-config consumer passed")
