@@ -222,6 +222,11 @@ std::vector<Param> build() {
          "on: automatic framing shades, reads and analyses only the region's box of the final frame (same numbers, "
          "less time) | off: the whole frame",
          "every measurement", nullptr, "crop", [](const Resolved& r) -> json { return r.setup.crop ? "on" : "off"; }});
+    add({"aim_size", T::Measurement, K::Integer, "64", 16, 1024, false, false, {}, "px",
+         "automatic framing: side of the coarse aiming renders that find and zoom onto the region before the final "
+         "render (larger: fewer clipped first aims on thin lobes, more time)",
+         "automatic framing", [](const Resolved& r) { return r.fovDeg == 0; }, "aim_size",
+         [](const Resolved& r) -> json { return r.setup.coarseSize; }});
     add({"tolerance", T::Measurement, K::Number, "", kMinTolerance, kMaxTolerance, false, false, {}, "",
          "E: choose the cheapest settings (size, sub-pixel boundary) predicted to reach aspect error E, check them "
          "against the next finer size, report settings, error_estimate and time_ms; --size, --boundary, "

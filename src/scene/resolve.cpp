@@ -319,6 +319,7 @@ Resolved resolve(const Values& values, Purpose purpose) {
     r.setup.supersample = int(in.number("supersample"));
     r.setup.cpu = in.text("renderer") == "cpu";
     r.setup.crop = in.text("crop") == "on";
+    r.setup.coarseSize = int(in.number("aim_size"));
     r.tolerance = in.given("tolerance") ? in.number("tolerance") : 0.0;
     r.reference = in.flag("reference");
     if (purpose == Purpose::Measure) checkMeasurement(in, r);
