@@ -1,5 +1,7 @@
 #include "brdf/ndf_table.hpp"
 
+#include "core/csv.hpp"
+
 #include "core/error.hpp"
 
 #include <algorithm>
@@ -12,20 +14,6 @@ namespace hilite::brdf {
 namespace {
 
 /// The two numbers of a row, or false. Separators: comma, whitespace.
-bool twoNumbers(const std::string& line, double& a, double& b) {
-    std::string s = line;
-    std::replace(s.begin(), s.end(), ',', ' ');
-    std::istringstream in(s);
-    std::string x, y, rest;
-    if (!(in >> x >> y) || (in >> rest)) return false;
-    auto number = [](const std::string& t, double& v) {
-        char* end = nullptr;
-        v = std::strtod(t.c_str(), &end);
-        return !t.empty() && end == t.c_str() + t.size();
-    };
-    return number(x, a) && number(y, b);
-}
-
 /// int over [t0, t1] of (a + b t) cos(t) sin(t) dt, exactly: F(t) = -(a + b t) cos(2t) / 4 + b sin(2t) / 8.
 double segmentIntegral(double t0, double d0, double t1, double d1) {
     const double b = (d1 - d0) / (t1 - t0), a = d0 - b * t0;
@@ -69,24 +57,12 @@ double projectedArea(const NdfTable& t, double thetaO) {
 std::shared_ptr<const NdfTable> parseNdfTable(const std::string& text, const std::string& name) {
     auto t = std::make_shared<NdfTable>();
     t->file = name;
-    std::istringstream in(text);
-    int lineNo = 0, lastLine = 0;
-    bool first = true;
+    const CsvNumbers csv = parseCsvNumbers(text, name, 2, "two numbers 'theta_h_deg, D'");  // rows 'theta_h_deg, D'
+    int lastLine = 0;
     std::vector<double> raw;
-    for (std::string line; std::getline(in, line);) {
-        ++lineNo;
-        line = line.substr(0, line.find('#'));
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        const std::string at = name + ":" + std::to_string(lineNo) + ": ";
-        double deg = 0, d = 0;
-        if (!twoNumbers(line, deg, d)) {
-            if (first) {  // a header
-                first = false;
-                continue;
-            }
-            throw InputError(at + "expected two numbers 'theta_h_deg, D'");
-        }
-        first = false;
+    for (size_t r = 0; r < csv.rows.size(); ++r) {
+        const double deg = csv.rows[r][0], d = csv.rows[r][1];
+        const std::string at = name + ":" + std::to_string(csv.lines[r]) + ": ";
         if (!std::isfinite(deg) || !std::isfinite(d)) throw InputError(at + "theta_h and D must be finite numbers");
         if (d < 0) throw InputError(at + "D must be >= 0 (got " + std::to_string(d) + ")");
         if (deg < 0 || deg > 90) throw InputError(at + "theta_h must be in [0, 90] degrees");
@@ -98,8 +74,9 @@ std::shared_ptr<const NdfTable> parseNdfTable(const std::string& text, const std
             throw InputError(at + "more than " + std::to_string(NdfTable::kMaxRows) + " rows");
         t->theta.push_back(deg2rad(deg));
         raw.push_back(d);
-        lastLine = lineNo;
+        lastLine = csv.lines[r];
     }
+    const int lineNo = std::max(lastLine, int(std::count(text.begin(), text.end(), '\n')));
     if (t->theta.size() < size_t(NdfTable::kMinRows))
         throw InputError(name + ":" + std::to_string(std::max(lastLine, lineNo)) + ": too few rows (" +
                          std::to_string(t->theta.size()) + "; an NDF table needs at least " +

@@ -1,5 +1,7 @@
 #include "brdf/spectral.hpp"
 
+#include "core/csv.hpp"
+
 #include "core/error.hpp"
 
 #include <algorithm>
@@ -96,44 +98,16 @@ std::shared_ptr<const Spectrum> buildSpectrum(const std::string& dataDir, const 
 }  // namespace
 
 CsvTable readCsv(const std::string& path, size_t columns) {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError("cannot read data file " + path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const CsvNumbers csv = parseCsvNumbers(text.str(), path, columns);
     CsvTable t;
+    t.source = csv.source;
     t.columns.assign(columns, {});
-    bool header = true;
-    int lineNo = 0;
-    for (std::string line; std::getline(in, line);) {
-        ++lineNo;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.empty()) continue;
-        if (line[0] == '#') {
-            t.source += line.substr(1) + "\n";
-            continue;
-        }
-        if (header) {  // the column names
-            header = false;
-            continue;
-        }
-        std::istringstream fields(line);
-        std::string field;
-        size_t c = 0;
-        for (; std::getline(fields, field, ','); ++c) {
-            size_t used = 0;
-            double v = 0;
-            try {
-                v = std::stod(field, &used);
-            } catch (...) {
-                used = 0;
-            }
-            if (c >= columns || used == 0)
-                throw InputError(path + ":" + std::to_string(lineNo) + ": expected " + std::to_string(columns) +
-                                  " numbers per row");
-            t.columns[c].push_back(v);
-        }
-        if (c != columns)
-            throw InputError(path + ":" + std::to_string(lineNo) + ": expected " + std::to_string(columns) +
-                              " numbers per row");
-    }
+    for (const auto& row : csv.rows)
+        for (size_t c = 0; c < columns; ++c) t.columns[c].push_back(row[c]);
     if (t.columns[0].size() < 2) throw InputError(path + ": fewer than two rows of data");
     for (size_t r = 1; r < t.columns[0].size(); ++r)
         if (!(t.columns[0][r] > t.columns[0][r - 1]))

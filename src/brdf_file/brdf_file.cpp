@@ -1,6 +1,7 @@
 #include "brdf_file/brdf_file.hpp"
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,21 +35,14 @@ std::vector<std::string> words(const std::string& line) {
 }
 
 /// Shortest text that reads back as the same double.
-std::string number(double v) {
-    char buf[32];
-    for (int precision : {6, 15, 17}) {
-        std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-        if (std::strtod(buf, nullptr) == v) break;
-    }
-    return buf;
-}
+std::string number(double v) { return exactText(v); }
 
 /// A finite number spelled exactly by `text`, or false.
 bool parseNumber(const std::string& text, double& v) {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    v = std::strtod(text.c_str(), &end);
-    return end == text.c_str() + text.size() && std::isfinite(v);
+    const auto parsed = hilite::parseNumber(text);
+    if (!parsed || !std::isfinite(*parsed)) return false;
+    v = *parsed;
+    return true;
 }
 
 bool isIdentifier(const std::string& s) {
