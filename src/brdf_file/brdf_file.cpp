@@ -52,26 +52,11 @@ bool isIdentifier(const std::string& s) {
 
 std::string at(const std::string& path, int line) { return path + ":" + std::to_string(line) + ": "; }
 
-/// Closest of `names` to `word` by edit distance, or "" when none is close.
+/// Closest parameter name to `word` (core/text.hpp's did-you-mean), or "" when none is close.
 std::string closest(const std::string& word, const std::vector<Parameter>& params) {
-    std::string best;
-    size_t bestD = std::max<size_t>(2, word.size() / 3) + 1;
-    for (const Parameter& p : params) {
-        const std::string& b = p.name;
-        std::vector<size_t> row(b.size() + 1);
-        for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-        for (size_t i = 1; i <= word.size(); ++i) {
-            size_t diag = row[0];
-            row[0] = i;
-            for (size_t j = 1; j <= b.size(); ++j) {
-                const size_t up = row[j];
-                row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (word[i - 1] == b[j - 1] ? 0 : 1)});
-                diag = up;
-            }
-        }
-        if (row[b.size()] < bestD) bestD = row[b.size()], best = b;
-    }
-    return best;
+    std::vector<std::string> names;
+    for (const Parameter& p : params) names.push_back(p.name);
+    return didYouMean(word, names);
 }
 
 Parameter parseParameter(const std::string& line, const std::string& path, int lineNo) {

@@ -41,7 +41,7 @@ bool contactSheet(ExperimentRunner& runner, const std::string& dir) {
     sizeValue.set("size", e.sheetSize, e.path + ": contact_sheet.size");
     const scene::Resolved sized = scene::resolve(sizeValue, scene::Purpose::Render);
     const int tw = sized.setup.width, th = sized.setup.height;
-    const int gap = 4, cols = int(e.sheetColumns.size()), nrows = int(e.sheetRows.size()), scale = 2;
+    const int gap = 4, cols = int(e.sheetColumns.size()), nrows = int(e.sheetRows.size()), scale = 3;
     const std::string rowKey = e.sheetRowKey.substr(e.sheetRowKey.find('.') + 1);
     const std::string colKey = e.sheetColumnKey.substr(e.sheetColumnKey.find('.') + 1);
     int left = io::textWidth(rowKey, scale);
