@@ -1,6 +1,6 @@
 #include "brdf/evaluate.hpp"
 
-#include "brdf/half_vector.hpp"
+#include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "brdf/terms.hpp"

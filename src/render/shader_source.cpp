@@ -330,7 +330,7 @@ std::vector<TermUniform> termUniforms(const brdf::Params& p) {
         u.push_back(etaK);
         u.push_back(weight);
     }
-    if (p.ndfTable) {  // issue 10: the tabulated NDF's rows and its Smith projected areas
+    if (p.ndfTable) {  // the tabulated NDF's rows and its Smith projected areas
         TermUniform rows{"uNdfTable", 2, {}}, area{"uNdfProjectedArea", 1, {}};
         for (size_t k = 0; k < p.ndfTable->theta.size(); ++k)
             rows.values.insert(rows.values.end(), {float(p.ndfTable->theta[k]), float(p.ndfTable->D[k])});
@@ -370,24 +370,37 @@ std::string effectKey(const brdf::Params& p, Output out) {
            std::to_string(ndfTableRows(p)) + "|" + dispatchSource(p);
 }
 
-ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
-    const std::string brdfFile = "shaders/brdf.glsl";
-    auto blocks = parseBlocks(readFile(dir + "/brdf.glsl"), brdfFile);
-    const auto micro = parseBlocks(readFile(dir + "/micro.glsl"), "shaders/micro.glsl");  // issue 10 terms
-    blocks.insert(blocks.end(), micro.begin(), micro.end());
-    // Dependency closure, dependencies first, each block once.
+std::vector<ShaderBlock> termLibrary(const std::string& dir) {
+    std::vector<ShaderBlock> blocks;
+    for (const char* name : {"brdf_gl.glsl", "brdf.glsl", "micro.glsl"}) {
+        const auto file = parseBlocks(readFile(dir + "/" + name), std::string("shaders/") + name);
+        blocks.insert(blocks.end(), file.begin(), file.end());
+    }
+    return blocks;
+}
+
+std::vector<const ShaderBlock*> closure(const std::vector<ShaderBlock>& blocks, const std::vector<std::string>& names) {
     std::vector<const ShaderBlock*> ordered;
     std::set<std::string> done;
     std::function<void(const std::string&)> add = [&](const std::string& name) {
         if (done.count(name)) return;
         auto it = std::find_if(blocks.begin(), blocks.end(), [&](const ShaderBlock& b) { return b.name == name; });
-        if (it == blocks.end()) throw SystemError(brdfFile + " / shaders/micro.glsl: no block '" + name + "'");
+        if (it == blocks.end())
+            throw SystemError("shaders/brdf_gl.glsl / brdf.glsl / micro.glsl: no block '" + name + "'");
         for (const auto& n : it->needs) add(n);
         done.insert(name);
         ordered.push_back(&*it);
     };
-    add("common");
-    for (const auto& t : termBlocks(p)) add(t);
+    for (const auto& name : names) add(name);
+    return ordered;
+}
+
+ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
+    const auto blocks = termLibrary(dir);
+    std::vector<std::string> names{"common"};
+    const auto terms = termBlocks(p);
+    names.insert(names.end(), terms.begin(), terms.end());
+    const auto ordered = closure(blocks, names);
 
     ProgramSources src;
     src.vertex.push_back({"shaders/plane.vert", 1, readFile(dir + "/plane.vert")});

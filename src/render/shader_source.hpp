@@ -27,7 +27,7 @@ std::string readShaderFile(const std::string& path);
 /// One "//@block NAME needs A B" ... "//@end" section of a shader file.
 struct ShaderBlock {
     std::string name;
-    std::string file;  ///< "shaders/brdf.glsl" or "shaders/micro.glsl"
+    std::string file;  ///< "shaders/brdf.glsl", "shaders/brdf_gl.glsl" or "shaders/micro.glsl"
     std::vector<std::string> needs;
     int firstLine = 1;
     std::string text;
@@ -35,6 +35,12 @@ struct ShaderBlock {
 
 /// The blocks of a file, in file order. Throws SystemError naming file:line on a malformed marker.
 std::vector<ShaderBlock> parseBlocks(const std::string& text, const std::string& file);
+
+/// Every block a program may be assembled from, read from `dir`: shaders/brdf_gl.glsl (the GLSL prelude
+/// and the GLSL-only terms), shaders/brdf.glsl (the terms shared with C++) and shaders/micro.glsl.
+std::vector<ShaderBlock> termLibrary(const std::string& dir);
+/// The named blocks with their dependencies, dependencies first, each once. SystemError for an unknown name.
+std::vector<const ShaderBlock*> closure(const std::vector<ShaderBlock>& blocks, const std::vector<std::string>& names);
 
 /// The term blocks a BRDF needs (before dependency closure), e.g. {"D_GGX", "HalfVector"}.
 std::vector<std::string> termBlocks(const brdf::Params& p);
