@@ -42,10 +42,12 @@ std::vector<ShaderBlock> termLibrary(const std::string& dir);
 /// The named blocks with their dependencies, dependencies first, each once. SystemError for an unknown name.
 std::vector<const ShaderBlock*> closure(const std::vector<ShaderBlock>& blocks, const std::vector<std::string>& names);
 
-/// The term blocks a BRDF needs (before dependency closure), e.g. {"D_GGX", "HalfVector"}.
+/// The term blocks a BRDF needs (before dependency closure), e.g. {"HalfVector", "D_GGX"}: the blocks of
+/// its rows in brdf/dispatch.hpp.
 std::vector<std::string> termBlocks(const brdf::Params& p);
-/// GLSL of the generated dispatch: uniforms and `vec3 brdf(vec3 wi, vec3 wo)`. It names only the
-/// terms switched in (no fresnel() at all for Fresnel::None) and no parameter values.
+/// GLSL of the generated dispatch: uniforms and `vec3 brdf(vec3 wi, vec3 wo)`, from the GLSL side of the
+/// rows of brdf/dispatch.hpp. It names only the terms switched in (no fresnel() at all for Fresnel::None)
+/// and no parameter values.
 std::string dispatchSource(const brdf::Params& p);
 
 /// A uniform the terms read, with its values (an array when values.size() > components).
