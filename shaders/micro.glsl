@@ -1,4 +1,4 @@
-// Issue 10 terms, in the //@block format of brdf.glsl (the assembler reads blocks from both files):
+// Micro-geometry terms, in the //@block format of brdf.glsl (the assembler reads blocks from all the .glsl files):
 // explicit micro-geometry, a bump field of mirror facets under a soft sun, supersampled (BumpGlint) or prefiltered
 // by its slope moments (BumpMoments). GLSL twin of src/render/bumps.cpp and src/render/bump_moments.cpp.
 

@@ -1,6 +1,7 @@
 #pragma once
 // The CPU double-precision BRDF: the oracle the GL path is tested against. It calls the terms of
-// brdf/terms.hpp exactly as the generated GLSL dispatch does (src/render/shader_source.cpp).
+// brdf/terms.hpp through the C++ side of the rows of brdf/dispatch.hpp, whose GLSL side the generated
+// GLSL dispatch calls (src/render/shader_source.cpp).
 
 #include "brdf/params.hpp"
 #include "core/math.hpp"

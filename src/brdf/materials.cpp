@@ -1,6 +1,6 @@
 #include "brdf/materials.hpp"
 
-#include "brdf/fresnel.hpp"
+#include "brdf/terms.hpp"
 
 namespace hilite::brdf {
 

@@ -1,7 +1,7 @@
 #pragma once
-// A hand-painted (tabulated) NDF (issue 10): D against theta_h from a CSV file, linear in theta_h between the
+// A hand-painted (tabulated) NDF: D against theta_h from a CSV file, linear in theta_h between the
 // rows, 0 beyond the last row, normalized automatically so that int D (n.h) dw = 1 (the factor it applied is
-// kept and reported). Twin of the D_Tabulated block of shaders/brdf.glsl, which reads the same rows from a
+// kept and reported). Twin of the D_Tabulated block of shaders/brdf_gl.glsl, which reads the same rows from a
 // uniform array and interpolates them the same way. Smith's Lambda has no closed form for a table: it is
 // integrated here from the definition, (1 + Lambda(w)) cos(theta) = int max(0, w.m) D(m) dm (Heitz 2014,
 // eq. 17), and tabulated against theta_o (kLambdaRows rows, linear between them) for both twins.

@@ -11,7 +11,7 @@
 // reflector (F = 1) exactly white (1, 1, 1); before it the white is M XYZ(D65) / Y(D65), off (1, 1, 1) by
 // < 1e-3 from the 4-digit matrix (kept in Spectrum::whiteBeforeNormalization).
 
-#include "brdf/fresnel.hpp"
+#include "brdf/terms.hpp"
 #include "core/math.hpp"
 
 #include <memory>

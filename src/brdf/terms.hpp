@@ -1,36 +1,50 @@
 #pragma once
-// Reflectance terms in double precision: the CPU twin of shaders/brdf.glsl. Same names, same argument
-// order, same split into terms; each carries the equation it evaluates and where it comes from.
-// Arguments are the clamped scalars computed once per direction pair (see evaluate.cpp):
-//   NoH = n.h, sin2h = |n x h|^2 = 1 - (n.h)^2 computed without cancellation, VoH = wo.h, and for the
-//   anisotropic terms HoX, HoY = h in the tangent frame.
-// The terms live in one header per kind; this header gathers them and holds the reflection lobes.
+// Reflectance terms in double precision: shaders/brdf.glsl itself, the one source of the GLSL and C++
+// terms (same names, argument order and split), compiled here as C++ with the prelude below. The GLSL
+// prelude is the block "prelude" of shaders/brdf_gl.glsl. See docs/terms.md.
+// C++-only: gaussianNormalization (below, ndf.cpp), the tabulated NDF (brdf/ndf_table.hpp) and the spectral
+// Fresnel (brdf/spectral.hpp).
 
-#include "brdf/common.hpp"
-#include "brdf/diffuse.hpp"
-#include "brdf/fresnel.hpp"
-#include "brdf/geometry.hpp"
-#include "brdf/ndf.hpp"
+#include "core/math.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace hilite::brdf {
 
-/// Normalized Phong reflection lobe: f = (n+2)/(2 pi) cos^n(alpha_r), alpha_r = angle(wo, reflect(wi)).
-/// Phong 1975 "Illumination for computer generated pictures"; normalization Lewis 1994.
-inline double Phong_Normalized(double oneMinusCosR, double n) {
-    return (n + 2.0) * (0.5 * kInvPi) * powCosStable(oneMinusCosR, n);
-}
+// ---- Prelude (C++) ----
+using glm::dot;
+using std::clamp;
+using std::exp;
+using std::max;
+using std::min;
+using std::sqrt;
 
-/// Classic (unnormalized) Phong lobe as a BRDF: f = cos^n(alpha_r), k_s = 1. Phong 1975. Kept for
-/// comparison: its albedo at normal incidence is 2 pi / (n + 2), above 1 for n < 2 pi - 2, and it
-/// dims as n grows (Lewis 1994 "Making shaders more physically plausible").
-inline double Phong_Classic(double oneMinusCosR, double n) { return powCosStable(oneMinusCosR, n); }
+/// log(1 - x) for x in [0, 1), exact near 0 (GLSL, without log1p: a series below 1e-2).
+inline double log1mStable(double x) { return std::log1p(-x); }
+/// theta from its sine and cosine: atan2 in double (GLSL: half-angle steps and a series, its atan being coarse).
+inline double angleFromSinCos(double s, double c) { return std::atan2(s, c); }
 
-/// Retroreflective lobe: f = (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi): light goes back toward the light
-/// (street signs, cat's eyes). Lafortune et al. 1997 "Non-linear approximation of reflectance functions" (their
-/// cosine lobe (Cx ux vx + Cy uy vy + Cz uz vz)^n with Cx = Cy = Cz = 1, i.e. (wi.wo)^n); normalized as Phong's
-/// (albedo 1 at normal incidence, less elsewhere), reciprocal. oneMinusCosB = |wo - wi|^2 / 2.
-inline double Retro_Normalized(double oneMinusCosB, double n) {
-    return (n + 2.0) * (0.5 * kInvPi) * powCosStable(oneMinusCosB, n);
-}
+#define REAL double
+#define VEC2 dvec2
+#define VEC3 dvec3
+#define INLINE inline
+#define REAL_MIN std::numeric_limits<double>::min()
+
+#include "../../shaders/brdf.glsl"
+
+#undef REAL
+#undef VEC2
+#undef VEC3
+#undef INLINE
+#undef REAL_MIN
+
+// ---- C++ only ----
+
+/// k_G of D_Gaussian = 1 / (2 pi int_0^{pi/2} exp(-(theta/m)^2) cos(theta) sin(theta) dtheta): no closed form
+/// on the hemisphere, so integrated numerically (relative error < 1e-12) and cached per m. m = 0 (a delta, k_G
+/// infinite) returns 0, so that no product with it becomes inf or NaN. See docs/terms.md, gaussianNormalization.
+double gaussianNormalization(double m);
 
 }  // namespace hilite::brdf

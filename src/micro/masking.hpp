@@ -22,7 +22,7 @@
 namespace hilite::micro {
 
 /// Beckmann's exact Smith Lambda: (erf(a) - 1)/2 + exp(-a^2) / (2 a sqrt(pi)), a = 1 / (m tan theta).
-/// Beckmann & Spizzichino 1963; Walter et al. 2007 eq. 27 (the rational fit in brdf/geometry.hpp is within 0.35%).
+/// Beckmann & Spizzichino 1963; Walter et al. 2007 eq. 27 (the rational fit lambdaBeckmannRational in shaders/brdf.glsl is within 0.35%).
 double lambdaBeckmannExact(double cosTheta, double m);
 
 struct MaskingRow {

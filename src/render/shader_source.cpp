@@ -1,5 +1,6 @@
 #include "render/shader_source.hpp"
 
+#include "brdf/dispatch.hpp"
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
@@ -123,160 +124,73 @@ using brdf::Fresnel;
 using brdf::Geometry;
 using brdf::Model;
 
-bool anisotropic(const brdf::Params& p) { return p.anisotropic() && brdf::allowsAnisotropy(p.model); }
-bool usesSmith(const brdf::Params& p) {
-    return p.geometry == Geometry::Smith || p.geometry == Geometry::SmithSeparable;
-}
+/// The dispatch rows a BRDF calls (brdf/dispatch.hpp), each kind in the order the program runs them.
+struct Rows {
+    const brdf::LobeRow* lobe = nullptr;
+    const brdf::DistributionRow* distribution = nullptr;
+    const brdf::LambdaRow* lambda = nullptr;
+    const brdf::FresnelRow* fresnel = nullptr;
+    const brdf::GeometryRow* geometry = nullptr;
+    const brdf::DiffuseRow* diffuse = nullptr;
 
-std::string distributionBlock(const brdf::Params& p) {
-    if (anisotropic(p)) return p.model == Model::GGX ? "D_GGXAniso" : "D_BeckmannAniso";
-    switch (p.model) {
-        case Model::Blinn: return "D_BlinnPhong";
-        case Model::Beckmann: return "D_Beckmann";
-        case Model::GGX: return "D_GGX";
-        case Model::Gaussian: return "D_Gaussian";
-        case Model::Tabulated: return "D_Tabulated";
-        default: return "";
+    explicit Rows(const brdf::Params& p) {
+        if (p.model != Model::None && !brdf::isMicrofacet(p.model)) lobe = &brdf::lobeRow(p.model);
+        if (brdf::isMicrofacet(p.model)) {
+            distribution = &brdf::distributionRow(p);
+            if (brdf::usesSmith(p)) lambda = &brdf::lambdaRow(p);
+            if (p.fresnel != Fresnel::None) fresnel = &brdf::fresnelRow(p.fresnel);
+            geometry = &brdf::geometryRow(p.geometry);
+        }
+        if (p.diffuse != Diffuse::None) diffuse = &brdf::diffuseRow(p.diffuse);
     }
-}
-
-/// Blinn-Phong and the Gaussian have no exact Smith Lambda: both use Beckmann's (see brdf/evaluate.cpp).
-std::string lambdaBlock(const brdf::Params& p) {
-    if (anisotropic(p)) return p.model == Model::GGX ? "Lambda_GGXAniso" : "Lambda_BeckmannAniso";
-    if (p.model == Model::Tabulated) return "Lambda_Tabulated";
-    return p.model == Model::GGX ? "Lambda_GGX" : "Lambda_Beckmann";
-}
-
-std::string fresnelBlock(Fresnel f) {
-    switch (f) {
-        case Fresnel::Schlick: return "F_Schlick";
-        case Fresnel::Dielectric: return "F_Dielectric";
-        case Fresnel::Conductor: return "F_Conductor";
-        case Fresnel::Spectral: return "F_Spectral";
-        case Fresnel::None: break;
+    /// Calls f(row) for each row present, in program order.
+    template <class F>
+    void each(F f) const {
+        if (lobe) f(*lobe);
+        if (distribution) f(*distribution);
+        if (fresnel) f(*fresnel);
+        if (lambda) f(*lambda);
+        if (geometry) f(*geometry);
+        if (diffuse) f(*diffuse);
     }
-    return "";
-}
-
-std::string geometryBlock(Geometry g) {
-    switch (g) {
-        case Geometry::CookTorrance: return "G_CookTorrance";
-        case Geometry::SmithSeparable: return "G2_SmithSeparable";
-        case Geometry::Smith: return "G2_SmithCorrelated";
-        case Geometry::None:
-        case Geometry::Implicit: break;
-    }
-    return "";
-}
-
-std::string diffuseBlock(Diffuse d) {
-    return d == Diffuse::Lambert ? "Fd_Lambert" : d == Diffuse::OrenNayar ? "Fd_OrenNayar" : "";
-}
-
-std::string distributionCall(const brdf::Params& p) {
-    if (anisotropic(p)) return distributionBlock(p) + "(ht.x, ht.y, hv.NoH, uAlpha.x, uAlpha.y)";
-    switch (p.model) {
-        case Model::Blinn: return "D_BlinnPhong(hv.oneMinusNoH, uExponent)";
-        case Model::Beckmann: return "D_Beckmann(hv.NoH, hv.sin2h, uRoughness)";
-        case Model::GGX: return "D_GGX(hv.NoH, hv.sin2h, uRoughness)";
-        case Model::Gaussian: return "D_Gaussian(hv.NoH, hv.sin2h, uRoughness, uGaussianNorm)";
-        case Model::Tabulated: return "D_Tabulated(hv.NoH, hv.sin2h)";
-        default: return "0.0";
-    }
-}
-
-std::string lambdaCall(const brdf::Params& p) {
-    if (anisotropic(p)) return lambdaBlock(p) + "(toTangent(w), uAlpha.x, uAlpha.y)";
-    switch (p.model) {
-        case Model::GGX: return "Lambda_GGX(w.z, uRoughness)";
-        case Model::Beckmann:
-        case Model::Gaussian: return "Lambda_Beckmann(w.z, uRoughness)";
-        // Blinn-Phong: Beckmann's Lambda with m = sqrt(2 / (n + 2)) (Walter 2007).
-        case Model::Blinn: return "Lambda_Beckmann(w.z, sqrt(2.0 / (uExponent + 2.0)))";
-        case Model::Tabulated: return "Lambda_Tabulated(w.z)";
-        default: return "0.0";
-    }
-}
-
-std::string fresnelCall(Fresnel f) {
-    switch (f) {
-        case Fresnel::Schlick: return "F_Schlick(uF0, VoH)";
-        case Fresnel::Dielectric:
-            return "vec3(F_Dielectric(VoH, uEta.r), F_Dielectric(VoH, uEta.g), F_Dielectric(VoH, uEta.b))";
-        case Fresnel::Conductor:
-            return "vec3(F_Conductor(VoH, uEta.r, uK.r), F_Conductor(VoH, uEta.g, uK.g), "
-                   "F_Conductor(VoH, uEta.b, uK.b))";
-        case Fresnel::Spectral: return "F_Spectral(VoH, uSpectralEtaK, uSpectralWeight)";
-        case Fresnel::None: break;
-    }
-    return "vec3(1.0)";
-}
-
-/// The factor G / (4 cos_i cos_o) applied to D, as one line of the generated specular().
-std::string geometryLine(Geometry g) {
-    switch (g) {
-        case Geometry::None: return "    s /= 4.0 * wi.z * wo.z;  // G = 1\n";
-        case Geometry::Implicit:
-            return "    s *= 0.25;  // implicit G = cos(theta_i) cos(theta_o) cancels the denominator\n";
-        case Geometry::CookTorrance:
-            return "    s *= G_CookTorrance(hv.NoH, wo.z, wi.z, hv.VoH) / (4.0 * wi.z * wo.z);\n";
-        case Geometry::SmithSeparable:
-            return "    s *= G2_SmithSeparable(lambda(wi), lambda(wo)) / (4.0 * wi.z * wo.z);\n";
-        case Geometry::Smith: return "    s *= G2_SmithCorrelated(lambda(wi), lambda(wo)) / (4.0 * wi.z * wo.z);\n";
-    }
-    return "";
-}
+};
 
 /// Uniform declarations and specular() of a microfacet model.
-void microfacetDispatch(std::ostream& s, const brdf::Params& p) {
-    if (anisotropic(p))
-        s << "uniform vec2 uAlpha;    // alpha_x, alpha_y\n"
-             "uniform vec2 uTangent;  // cos, sin of the tangent angle\n";
-    else
-        s << (brdf::usesExponent(p.model) ? "uniform float uExponent;\n" : "uniform float uRoughness;\n");
-    if (p.model == Model::Gaussian) s << "uniform float uGaussianNorm;  // k_G\n";
-    switch (p.fresnel) {
-        case Fresnel::Schlick: s << "uniform vec3 uF0;\n"; break;
-        case Fresnel::Dielectric: s << "uniform vec3 uEta;\n"; break;
-        case Fresnel::Conductor: s << "uniform vec3 uEta;\nuniform vec3 uK;\n"; break;
-        case Fresnel::Spectral:
-            s << "uniform vec2 uSpectralEtaK[HILITE_SPECTRAL_SAMPLES];\n"
-                 "uniform vec3 uSpectralWeight[HILITE_SPECTRAL_SAMPLES];\n";
-            break;
-        case Fresnel::None: break;
-    }
-    if (anisotropic(p))
+void microfacetDispatch(std::ostream& s, const brdf::Params& p, const Rows& rows) {
+    if (brdf::anisotropicTerms(p))
         s << "vec3 toTangent(vec3 w) {\n"
              "    return vec3(w.x * uTangent.x + w.y * uTangent.y, -w.x * uTangent.y + w.y * uTangent.x, w.z);\n}\n"
              "float distribution(HalfVector hv) {\n    vec3 ht = toTangent(hv.h);\n    return "
-          << distributionCall(p) << ";\n}\n";
+          << rows.distribution->glsl << ";\n}\n";
     else
-        s << "float distribution(HalfVector hv) { return " << distributionCall(p) << "; }\n";
-    if (usesSmith(p)) s << "float lambda(vec3 w) { return " << lambdaCall(p) << "; }\n";
-    if (p.fresnel != Fresnel::None) s << "vec3 fresnel(float VoH) { return " << fresnelCall(p.fresnel) << "; }\n";
+        s << "float distribution(HalfVector hv) { return " << rows.distribution->glsl << "; }\n";
+    if (rows.lambda) s << "float lambda(vec3 w) { return " << rows.lambda->glsl << "; }\n";
+    if (rows.fresnel) s << "vec3 fresnel(float VoH) { return " << rows.fresnel->glsl << "; }\n";
     s << "vec3 specular(vec3 wi, vec3 wo) {\n"
          "    HalfVector hv = halfVector(wi, wo);\n"
          "    if (!hv.valid) return vec3(0.0);\n"
          "    float s = distribution(hv);\n"
-      << geometryLine(p.geometry)
-      << (p.fresnel != Fresnel::None ? "    return s * fresnel(hv.VoH);\n" : "    return vec3(s);\n") << "}\n";
+         "    "
+      << rows.geometry->glsl << "\n"
+      << (rows.fresnel ? "    return s * fresnel(hv.VoH);\n" : "    return vec3(s);\n") << "}\n";
+}
+
+/// termBlocks and the further blocks the rows' GLSL calls use: what the program is assembled from.
+std::vector<std::string> programBlocks(const brdf::Params& p) {
+    std::vector<std::string> out = termBlocks(p);
+    Rows(p).each([&](const auto& row) { out.insert(out.end(), row.needs.begin(), row.needs.end()); });
+    return out;
 }
 
 }  // namespace
 
 std::vector<std::string> termBlocks(const brdf::Params& p) {
     std::vector<std::string> out;
-    if (p.model == Model::Phong) out.push_back("Phong_Normalized");
-    if (p.model == Model::PhongClassic) out.push_back("Phong_Classic");
-    if (p.model == Model::Retro) out.push_back("Retro_Normalized");
-    if (brdf::isMicrofacet(p.model)) {
-        out.push_back("HalfVector");
-        out.push_back(distributionBlock(p));
-        if (p.fresnel != Fresnel::None) out.push_back(fresnelBlock(p.fresnel));
-        if (usesSmith(p)) out.push_back(lambdaBlock(p));
-        if (p.geometry != Geometry::None && p.geometry != Geometry::Implicit) out.push_back(geometryBlock(p.geometry));
-    }
-    if (p.diffuse != Diffuse::None) out.push_back(diffuseBlock(p.diffuse));
+    const Rows rows(p);
+    if (rows.distribution) out.push_back("HalfVector");
+    rows.each([&](const auto& row) {
+        if (*row.block) out.push_back(row.block);
+    });
     return out;
 }
 
@@ -285,26 +199,20 @@ std::string dispatchSource(const brdf::Params& p) {
     s << "// ---- Dispatch (generated for the terms:";
     for (const auto& b : termBlocks(p)) s << " " << b;
     s << ") ----\n";
-    const bool specular = p.model != Model::None, diffuse = p.diffuse != Diffuse::None;
-    if (p.model == Model::Phong || p.model == Model::PhongClassic) {
-        s << "uniform float uExponent;\n"
-             "vec3 specular(vec3 wi, vec3 wo) {\n"
-             "    vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2\n"
-             "    return vec3("
-          << (p.model == Model::Phong ? "Phong_Normalized" : "Phong_Classic") << "(0.5 * dot(d, d), uExponent));\n}\n";
-    } else if (p.model == Model::Retro) {
-        s << "uniform float uExponent;\n"
-             "vec3 specular(vec3 wi, vec3 wo) {\n"
-             "    vec3 d = wo - wi;  // 1 - cos(beta) = |d|^2 / 2\n"
-             "    return vec3(Retro_Normalized(0.5 * dot(d, d), uExponent));\n}\n";
-    } else if (specular) {
-        microfacetDispatch(s, p);
-    }
-    if (p.diffuse == Diffuse::Lambert)
-        s << "uniform vec3 uAlbedo;\nvec3 diffuse(vec3 wi, vec3 wo) { return Fd_Lambert(uAlbedo); }\n";
-    if (p.diffuse == Diffuse::OrenNayar)
-        s << "uniform vec3 uAlbedo;\nuniform float uSigma;  // radians\n"
-             "vec3 diffuse(vec3 wi, vec3 wo) { return Fd_OrenNayar(uAlbedo, uSigma, wi.z, wo.z, dot(wi, wo)); }\n";
+    const Rows rows(p);
+    std::vector<std::string> uniforms;  // each once, in the order the rows name them
+    rows.each([&](const auto& row) {
+        for (const char* u : row.uniforms)
+            if (std::find(uniforms.begin(), uniforms.end(), u) == uniforms.end()) uniforms.push_back(u);
+    });
+    for (const auto& u : uniforms) s << "uniform " << u << ";\n";
+    if (rows.lobe)
+        s << "vec3 specular(vec3 wi, vec3 wo) {\n    " << rows.lobe->setup << "\n    return vec3(" << rows.lobe->glsl
+          << ");\n}\n";
+    else if (rows.distribution)
+        microfacetDispatch(s, p, rows);
+    if (rows.diffuse) s << "vec3 diffuse(vec3 wi, vec3 wo) { return " << rows.diffuse->glsl << "; }\n";
+    const bool specular = rows.lobe || rows.distribution, diffuse = rows.diffuse;
     s << "vec3 brdf(vec3 wi, vec3 wo) { return "
       << (specular && diffuse ? "specular(wi, wo) + diffuse(wi, wo)"
           : specular          ? "specular(wi, wo)"
@@ -317,7 +225,7 @@ std::string dispatchSource(const brdf::Params& p) {
 std::vector<TermUniform> termUniforms(const brdf::Params& p) {
     std::vector<TermUniform> u;
     auto rgb = [](const dvec3& v) { return std::vector<float>{float(v.x), float(v.y), float(v.z)}; };
-    if (anisotropic(p)) {
+    if (brdf::anisotropicTerms(p)) {
         double c, sn;
         cosSinDeg(p.tangentAngleDeg, c, sn);
         u.push_back({"uAlpha", 2, {float(p.alphaX()), float(p.alphaY())}});
@@ -337,7 +245,7 @@ std::vector<TermUniform> termUniforms(const brdf::Params& p) {
         u.push_back(etaK);
         u.push_back(weight);
     }
-    if (p.ndfTable) {  // issue 10: the tabulated NDF's rows and its Smith projected areas
+    if (p.ndfTable) {  // the tabulated NDF's rows and its Smith projected areas
         TermUniform rows{"uNdfTable", 2, {}}, area{"uNdfProjectedArea", 1, {}};
         for (size_t k = 0; k < p.ndfTable->theta.size(); ++k)
             rows.values.insert(rows.values.end(), {float(p.ndfTable->theta[k]), float(p.ndfTable->D[k])});
@@ -377,24 +285,37 @@ std::string effectKey(const brdf::Params& p, Output out) {
            std::to_string(ndfTableRows(p)) + "|" + dispatchSource(p);
 }
 
-ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
-    const std::string brdfFile = "shaders/brdf.glsl";
-    auto blocks = parseBlocks(readFile(dir + "/brdf.glsl"), brdfFile);
-    const auto micro = parseBlocks(readFile(dir + "/micro.glsl"), "shaders/micro.glsl");  // issue 10 terms
-    blocks.insert(blocks.end(), micro.begin(), micro.end());
-    // Dependency closure, dependencies first, each block once.
+std::vector<ShaderBlock> termLibrary(const std::string& dir) {
+    std::vector<ShaderBlock> blocks;
+    for (const char* name : {"brdf_gl.glsl", "brdf.glsl", "micro.glsl"}) {
+        const auto file = parseBlocks(readFile(dir + "/" + name), std::string("shaders/") + name);
+        blocks.insert(blocks.end(), file.begin(), file.end());
+    }
+    return blocks;
+}
+
+std::vector<const ShaderBlock*> closure(const std::vector<ShaderBlock>& blocks, const std::vector<std::string>& names) {
     std::vector<const ShaderBlock*> ordered;
     std::set<std::string> done;
     std::function<void(const std::string&)> add = [&](const std::string& name) {
         if (done.count(name)) return;
         auto it = std::find_if(blocks.begin(), blocks.end(), [&](const ShaderBlock& b) { return b.name == name; });
-        if (it == blocks.end()) throw SystemError(brdfFile + " / shaders/micro.glsl: no block '" + name + "'");
+        if (it == blocks.end())
+            throw SystemError("shaders/brdf_gl.glsl / brdf.glsl / micro.glsl: no block '" + name + "'");
         for (const auto& n : it->needs) add(n);
         done.insert(name);
         ordered.push_back(&*it);
     };
-    add("common");
-    for (const auto& t : termBlocks(p)) add(t);
+    for (const auto& name : names) add(name);
+    return ordered;
+}
+
+ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
+    const auto blocks = termLibrary(dir);
+    std::vector<std::string> names{"common"};
+    const auto terms = programBlocks(p);
+    names.insert(names.end(), terms.begin(), terms.end());
+    const auto ordered = closure(blocks, names);
 
     ProgramSources src;
     src.vertex.push_back({"shaders/plane.vert", 1, readFile(dir + "/plane.vert")});

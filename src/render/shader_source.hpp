@@ -29,7 +29,7 @@ std::string readShaderFile(const std::string& path);
 /// One "//@block NAME needs A B" ... "//@end" section of a shader file.
 struct ShaderBlock {
     std::string name;
-    std::string file;  ///< "shaders/brdf.glsl" or "shaders/micro.glsl"
+    std::string file;  ///< "shaders/brdf.glsl", "shaders/brdf_gl.glsl" or "shaders/micro.glsl"
     std::vector<std::string> needs;
     int firstLine = 1;
     std::string text;
@@ -38,10 +38,18 @@ struct ShaderBlock {
 /// The blocks of a file, in file order. Throws SystemError naming file:line on a malformed marker.
 std::vector<ShaderBlock> parseBlocks(const std::string& text, const std::string& file);
 
-/// The term blocks a BRDF needs (before dependency closure), e.g. {"D_GGX", "HalfVector"}.
+/// Every block a program may be assembled from, read from `dir`: shaders/brdf_gl.glsl (the GLSL prelude
+/// and the GLSL-only terms), shaders/brdf.glsl (the terms shared with C++) and shaders/micro.glsl.
+std::vector<ShaderBlock> termLibrary(const std::string& dir);
+/// The named blocks with their dependencies, dependencies first, each once. SystemError for an unknown name.
+std::vector<const ShaderBlock*> closure(const std::vector<ShaderBlock>& blocks, const std::vector<std::string>& names);
+
+/// The term blocks a BRDF needs (before dependency closure), e.g. {"HalfVector", "D_GGX"}: the blocks of
+/// its rows in brdf/dispatch.hpp.
 std::vector<std::string> termBlocks(const brdf::Params& p);
-/// GLSL of the generated dispatch: uniforms and `vec3 brdf(vec3 wi, vec3 wo)`. It names only the
-/// terms switched in (no fresnel() at all for Fresnel::None) and no parameter values.
+/// GLSL of the generated dispatch: uniforms and `vec3 brdf(vec3 wi, vec3 wo)`, from the GLSL side of the
+/// rows of brdf/dispatch.hpp. It names only the terms switched in (no fresnel() at all for Fresnel::None)
+/// and no parameter values.
 std::string dispatchSource(const brdf::Params& p);
 
 /// A uniform the terms read, with its values (an array when values.size() > components).

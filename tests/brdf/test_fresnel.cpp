@@ -3,7 +3,7 @@
 // conductor form against pbrt-v4's complex arithmetic, and Schlick's error against the exact curve.
 
 #include "brdf/evaluate.hpp"
-#include "brdf/fresnel.hpp"
+#include "brdf/terms.hpp"
 #include "brdf/materials.hpp"
 #include "brdf/spectral.hpp"
 

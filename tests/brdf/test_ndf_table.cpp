@@ -2,7 +2,7 @@
 // and one-line errors naming file:line for bad tables.
 
 #include "brdf/evaluate.hpp"
-#include "brdf/geometry.hpp"
+#include "brdf/terms.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/ndf_tables.hpp"
 #include "core/error.hpp"

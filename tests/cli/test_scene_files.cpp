@@ -53,7 +53,7 @@ TEST_CASE("cli::explain prints only the named terms' GLSL") {
     CHECK(none.out.find("F_Schlick") == std::string::npos);
     CHECK(none.out.find("F_Dielectric") == std::string::npos);
     const auto schlick = hilite("explain --part glsl --model ggx --fresnel schlick");
-    CHECK(schlick.out.find("vec3 F_Schlick(") != std::string::npos);
+    CHECK(schlick.out.find("VEC3 F_Schlick(") != std::string::npos);
 }
 
 TEST_CASE("cli scene files: bad input names the file, line and key; exit 2; nothing written") {

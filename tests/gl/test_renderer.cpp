@@ -120,13 +120,13 @@ TEST_CASE("render::Renderer a shader syntax error names the file and line") {
     fs::create_directories(dir);
     for (const auto& e : fs::directory_iterator(env.renderer->shaderDir()))
         fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);
-    // Break the line after "float D_GGX(" in brdf.glsl and remember its number.
+    // Break the line after "INLINE REAL D_GGX(" in brdf.glsl and remember its number.
     std::ifstream in(dir / "brdf.glsl");
     std::stringstream out;
     int lineNo = 0, broken = 0;
     for (std::string line; std::getline(in, line);) {
         ++lineNo;
-        if (!broken && line.rfind("float D_GGX(", 0) == 0) {
+        if (!broken && line.rfind("INLINE REAL D_GGX(", 0) == 0) {
             out << line << "\n    this is not glsl;\n";
             broken = ++lineNo;
             continue;

@@ -1,4 +1,4 @@
-// The term rows' runners. GL: a one-pixel program made of the row's blocks of shaders/brdf.glsl (with
+// The term rows' runners. GL: a one-pixel program made of the row's blocks of shaders/*.glsl (with
 // their dependencies) and a main() running the row's GLSL on uniform arguments, so the compiler cannot
 // fold them; read back as floats. Double: the row's C++ twin.
 
@@ -26,30 +26,17 @@ namespace {
 constexpr int kMaxArgs = 8;
 
 const std::vector<render::ShaderBlock>& brdfBlocks() {
-    static const std::vector<render::ShaderBlock> blocks = [] {
-        std::ifstream in(render::shaderDirectory() + "/brdf.glsl");
-        std::ostringstream text;
-        text << in.rdbuf();
-        return render::parseBlocks(text.str(), "shaders/brdf.glsl");
-    }();
+    static const std::vector<render::ShaderBlock> blocks = render::termLibrary(render::shaderDirectory());
     return blocks;
 }
 
 /// The fragment stage: #version, the blocks (dependencies first, each once), the row's main().
 std::vector<gl::SourcePiece> fragmentOf(const TermCase& c) {
     std::vector<gl::SourcePiece> pieces{{"<hard-case config>", 1, "#version 450 core\n"}};
-    std::set<std::string> done;
-    std::function<void(const std::string&)> add = [&](const std::string& name) {
-        if (done.count(name)) return;
-        const auto& blocks = brdfBlocks();
-        auto it = std::find_if(blocks.begin(), blocks.end(), [&](const auto& b) { return b.name == name; });
-        if (it == blocks.end()) throw SystemError("shaders/brdf.glsl: no block '" + name + "'");
-        for (const auto& n : it->needs) add(n);
-        done.insert(name);
-        pieces.push_back({"shaders/brdf.glsl", it->firstLine, it->text});
-    };
-    add("common");
-    for (const auto& b : c.blocks) add(b);
+    std::vector<std::string> names{"common"};
+    names.insert(names.end(), c.blocks.begin(), c.blocks.end());
+    for (const render::ShaderBlock* b : render::closure(brdfBlocks(), names))
+        pieces.push_back({b->file, b->firstLine, b->text});
     pieces.push_back({"<hard-case " + c.name + ">", 1,
                       "uniform float a[" + std::to_string(kMaxArgs) +
                           "];\nout vec4 fragColor;\nvoid main() {\n    vec4 r = vec4(0.0);\n    " + c.glsl +

@@ -4,7 +4,6 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "brdf/half_vector.hpp"
 #include "brdf/terms.hpp"
 
 #include <cmath>

@@ -33,7 +33,7 @@ std::vector<std::string> allBlocks() {
 std::set<std::string> definedBlocks(const std::string& text) {
     std::set<std::string> out;
     for (const auto& name : allBlocks())
-        for (const char* type : {"float ", "vec3 ", "vec2 ", "HalfVector "})
+        for (const char* type : {"REAL ", "VEC3 ", "VEC2 ", "HalfVector "})
             if (text.find(std::string(type) + name + "(") != std::string::npos) out.insert(name);
     return out;
 }

@@ -1,0 +1,78 @@
+// The GLSL-only side of the reflectance terms: the prelude that lets shaders/brdf.glsl compile as GLSL
+// (its C++ counterpart is src/brdf/terms.hpp), and the terms whose GLSL form reads uniform arrays or
+// sized arrays where the C++ form takes a table (src/brdf/ndf_table.hpp, src/brdf/spectral.hpp).
+// Blocks as in shaders/brdf.glsl; the assembler reads them from both files. See docs/terms.md.
+
+// ---- Config ----
+// (injected after #version by the assembler: HILITE_OUTPUT_MEASURE or HILITE_OUTPUT_COLOR, and for the
+// spectral Fresnel HILITE_SPECTRAL_SAMPLES, the length of its uniform arrays)
+
+//@block prelude
+#define REAL float
+#define VEC2 vec2
+#define VEC3 vec3
+#define INLINE
+#define REAL_MIN 1.17549435e-38  // the smallest normal float (denormals flush to 0 on llvmpipe)
+
+// log(1 - x) for x in [0, 1). GLSL has no log1p: below 1e-2 the series (error < x^5/5) keeps the digits
+// that log(1.0 - x) loses in float (C++: log1p).
+float log1mStable(float x) {
+    if (x < 1e-2) return -x * (1.0 + x * (0.5 + x * (1.0 / 3.0 + x * 0.25)));
+    return log(1.0 - x);
+}
+//@end
+
+//@block angleFromSinCos
+// theta from (sin, cos), c > 0: three half-angle steps and the atan series to t^11 (relative error < 3e-10),
+// because GLSL's atan is ~1e-6 rad accurate on llvmpipe (C++: atan2; docs/terms.md, angleFromSinCos).
+float angleFromSinCos(float s, float c) {
+    float t = s / (1.0 + c);            // tan(theta / 2)
+    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 4)
+    t = t / (1.0 + sqrt(1.0 + t * t));  // tan(theta / 8)
+    float t2 = t * t;
+    return 8.0 * t * (1.0 + t2 * (-1.0 / 3.0 + t2 * (1.0 / 5.0 + t2 * (-1.0 / 7.0 + t2 * (1.0 / 9.0 - t2 / 11.0)))));
+}
+//@end
+
+//@block D_Tabulated needs common angleFromSinCos
+// Tabulated (hand-painted) NDF: D(theta_h) linear in theta_h between the rows (theta_k, D_k) of a table, 0 beyond
+// the last row, normalized on the CPU (src/brdf/ndf_table.hpp). The row is found by bisection, as in C++.
+uniform vec2 uNdfTable[HILITE_NDF_TABLE_ROWS];  // (theta_h radians, D), theta_h increasing from 0
+float D_Tabulated(float NoH, float sin2h) {
+    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    float t = angleFromSinCos(sqrt(sin2h), NoH);
+    vec2 last = uNdfTable[HILITE_NDF_TABLE_ROWS - 1];
+    if (t >= last.x) return t == last.x ? last.y : 0.0;  // beyond the table: 0
+    int lo = 0, hi = HILITE_NDF_TABLE_ROWS - 1;  // invariant: theta_lo <= t < theta_hi
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (uNdfTable[mid].x <= t) lo = mid; else hi = mid;
+    }
+    vec2 a = uNdfTable[lo], b = uNdfTable[hi];
+    return a.y + (b.y - a.y) * ((t - a.x) / (b.x - a.x));
+}
+//@end
+
+//@block Lambda_Tabulated needs common
+// Smith Lambda of a tabulated NDF: (1 + Lambda) cos(theta) = int max(0, w.m) D dm, integrated on the CPU at
+// theta_o = 0, 1, .., 90 degrees (Heitz 2014 eq. 17) and interpolated linearly in theta_o.
+uniform float uNdfProjectedArea[91];
+float Lambda_Tabulated(float cosTheta) {
+    if (cosTheta >= 1.0) return 0.0;  // normal incidence: nothing is masked
+    float c = max(cosTheta, 0.0);
+    float x = atan(sqrt(max(0.0, 1.0 - c * c)), c) * (180.0 / PI);
+    int k = min(int(x), 89);
+    float area = mix(uNdfProjectedArea[k], uNdfProjectedArea[k + 1], x - float(k));
+    return max(0.0, area / cosTheta - 1.0);
+}
+//@end
+
+//@block F_Spectral needs F_Conductor
+// Spectral Fresnel of a measured metal: F = sum_i w_i F_Conductor(cos, eta_i, k_i), w_i the linear sRGB
+// weights of CIE 1931 under D65 per wavelength sample (each channel sums to 1; see src/brdf/spectral.hpp).
+vec3 F_Spectral(float cosTheta_i, vec2 etaK[HILITE_SPECTRAL_SAMPLES], vec3 weight[HILITE_SPECTRAL_SAMPLES]) {
+    vec3 f = vec3(0.0);
+    for (int i = 0; i < HILITE_SPECTRAL_SAMPLES; ++i) f += weight[i] * F_Conductor(cosTheta_i, etaK[i].x, etaK[i].y);
+    return f;
+}
+//@end

@@ -1,0 +1,209 @@
+#include "brdf/dispatch.hpp"
+
+#include "brdf/evaluate.hpp"
+#include "brdf/ndf.hpp"
+#include "brdf/ndf_table.hpp"
+#include "brdf/spectral.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace hilite::brdf {
+
+namespace {
+
+const NdfTable& table(const Params& p) {
+    if (!p.ndfTable) throw std::logic_error("model tabulated without a table (Params::ndfTable)");
+    return *p.ndfTable;
+}
+
+template <class Key, class Row>
+struct Keyed {
+    Key key;
+    Row row;
+};
+
+template <class Key, class Row>
+const Row& find(const std::vector<Keyed<Key, Row>>& rows, const Key& key, const char* what) {
+    auto it = std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r.key == key; });
+    if (it == rows.end()) throw std::logic_error(std::string("no ") + what + " row for this BRDF");
+    return it->row;
+}
+
+const char* const kAnisoUniforms[] = {"vec2 uAlpha", "vec2 uTangent"};  // alpha_x, alpha_y; cos, sin of the angle
+
+// ---- Reflection lobes ----
+const std::vector<Keyed<Model, LobeRow>> kLobes = {
+    {Model::Phong,
+     {{"Phong_Normalized", {}, "Phong_Normalized(0.5 * dot(d, d), uExponent)", {"float uExponent"},
+       [](const Params& p, const dvec3& wi, const dvec3& wo) {
+           const dvec3 d = wo - dvec3(-wi.x, -wi.y, wi.z);
+           return Phong_Normalized(0.5 * glm::dot(d, d), p.exponent);
+       }},
+      "vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2"}},
+    {Model::PhongClassic,
+     {{"Phong_Classic", {}, "Phong_Classic(0.5 * dot(d, d), uExponent)", {"float uExponent"},
+       [](const Params& p, const dvec3& wi, const dvec3& wo) {
+           const dvec3 d = wo - dvec3(-wi.x, -wi.y, wi.z);
+           return Phong_Classic(0.5 * glm::dot(d, d), p.exponent);
+       }},
+      "vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2"}},
+    {Model::Retro,
+     {{"Retro_Normalized", {}, "Retro_Normalized(0.5 * dot(d, d), uExponent)", {"float uExponent"},
+       [](const Params& p, const dvec3& wi, const dvec3& wo) {
+           const dvec3 d = wo - wi;
+           return Retro_Normalized(0.5 * glm::dot(d, d), p.exponent);
+       }},
+      "vec3 d = wo - wi;  // 1 - cos(beta) = |d|^2 / 2"}},
+};
+
+// ---- NDFs, keyed by (model, anisotropic) ----
+using DistributionKey = std::pair<Model, bool>;
+const std::vector<Keyed<DistributionKey, DistributionRow>> kDistributions = {
+    {{Model::Blinn, false},
+     {"D_BlinnPhong", {}, "D_BlinnPhong(hv.oneMinusNoH, uExponent)", {"float uExponent"},
+      [](const Params& p, const HalfVector& hv, const dvec3&) { return D_BlinnPhong(hv.oneMinusNoH, p.exponent); }}},
+    {{Model::Beckmann, false},
+     {"D_Beckmann", {}, "D_Beckmann(hv.NoH, hv.sin2h, uRoughness)", {"float uRoughness"},
+      [](const Params& p, const HalfVector& hv, const dvec3&) { return D_Beckmann(hv.NoH, hv.sin2h, p.roughness); }}},
+    {{Model::GGX, false},
+     {"D_GGX", {}, "D_GGX(hv.NoH, hv.sin2h, uRoughness)", {"float uRoughness"},
+      [](const Params& p, const HalfVector& hv, const dvec3&) { return D_GGX(hv.NoH, hv.sin2h, p.roughness); }}},
+    {{Model::Gaussian, false},
+     {"D_Gaussian", {}, "D_Gaussian(hv.NoH, hv.sin2h, uRoughness, uGaussianNorm)",
+      {"float uRoughness", "float uGaussianNorm"},
+      [](const Params& p, const HalfVector& hv, const dvec3&) {
+          return D_Gaussian(hv.NoH, hv.sin2h, p.roughness, gaussianNormalization(p.roughness));
+      }}},
+    {{Model::Tabulated, false},
+     {"D_Tabulated", {}, "D_Tabulated(hv.NoH, hv.sin2h)", {},  // its uniforms are in the block
+      [](const Params& p, const HalfVector& hv, const dvec3&) { return D_Tabulated(hv.NoH, hv.sin2h, table(p)); }}},
+    {{Model::Beckmann, true},
+     {"D_BeckmannAniso", {}, "D_BeckmannAniso(ht.x, ht.y, hv.NoH, uAlpha.x, uAlpha.y)",
+      {kAnisoUniforms[0], kAnisoUniforms[1]},
+      [](const Params& p, const HalfVector& hv, const dvec3& ht) {
+          return D_BeckmannAniso(ht.x, ht.y, hv.NoH, p.alphaX(), p.alphaY());
+      }}},
+    {{Model::GGX, true},
+     {"D_GGXAniso", {}, "D_GGXAniso(ht.x, ht.y, hv.NoH, uAlpha.x, uAlpha.y)", {kAnisoUniforms[0], kAnisoUniforms[1]},
+      [](const Params& p, const HalfVector& hv, const dvec3& ht) {
+          return D_GGXAniso(ht.x, ht.y, hv.NoH, p.alphaX(), p.alphaY());
+      }}},
+};
+
+// ---- Smith Lambda, keyed as the NDFs. Blinn-Phong and the Gaussian have no closed-form Lambda: they use
+// Beckmann's (docs/terms.md, "Lambda of Blinn-Phong and the Gaussian"). ----
+const std::vector<Keyed<DistributionKey, LambdaRow>> kLambdas = {
+    {{Model::GGX, false},
+     {"Lambda_GGX", {}, "Lambda_GGX(w.z, uRoughness)", {"float uRoughness"},
+      [](const Params& p, const dvec3& w) { return Lambda_GGX(w.z, p.roughness); }}},
+    {{Model::Beckmann, false},
+     {"Lambda_Beckmann", {}, "Lambda_Beckmann(w.z, uRoughness)", {"float uRoughness"},
+      [](const Params& p, const dvec3& w) { return Lambda_Beckmann(w.z, p.roughness); }}},
+    {{Model::Gaussian, false},
+     {"Lambda_Beckmann", {}, "Lambda_Beckmann(w.z, uRoughness)", {"float uRoughness"},
+      [](const Params& p, const dvec3& w) { return Lambda_Beckmann(w.z, p.roughness); }}},
+    {{Model::Blinn, false},
+     {"Lambda_Beckmann", {"blinnExponentToBeckmann"}, "Lambda_Beckmann(w.z, blinnExponentToBeckmann(uExponent))",
+      {"float uExponent"},
+      [](const Params& p, const dvec3& w) { return Lambda_Beckmann(w.z, blinnExponentToBeckmann(p.exponent)); }}},
+    {{Model::Tabulated, false},
+     {"Lambda_Tabulated", {}, "Lambda_Tabulated(w.z)", {},
+      [](const Params& p, const dvec3& w) { return Lambda_Tabulated(w.z, table(p)); }}},
+    {{Model::Beckmann, true},
+     {"Lambda_BeckmannAniso", {}, "Lambda_BeckmannAniso(toTangent(w), uAlpha.x, uAlpha.y)",
+      {kAnisoUniforms[0], kAnisoUniforms[1]},
+      [](const Params& p, const dvec3& w) { return Lambda_BeckmannAniso(toTangent(p, w), p.alphaX(), p.alphaY()); }}},
+    {{Model::GGX, true},
+     {"Lambda_GGXAniso", {}, "Lambda_GGXAniso(toTangent(w), uAlpha.x, uAlpha.y)", {kAnisoUniforms[0], kAnisoUniforms[1]},
+      [](const Params& p, const dvec3& w) { return Lambda_GGXAniso(toTangent(p, w), p.alphaX(), p.alphaY()); }}},
+};
+
+// ---- Fresnel ----
+const std::vector<Keyed<Fresnel, FresnelRow>> kFresnels = {
+    {Fresnel::None, {"", {}, "vec3(1.0)", {}, [](const Params&, double) { return dvec3(1.0); }}},
+    {Fresnel::Schlick,
+     {"F_Schlick", {}, "F_Schlick(uF0, VoH)", {"vec3 uF0"},
+      [](const Params& p, double VoH) { return F_Schlick(p.f0, VoH); }}},
+    {Fresnel::Dielectric,
+     {"F_Dielectric", {}, "vec3(F_Dielectric(VoH, uEta.r), F_Dielectric(VoH, uEta.g), F_Dielectric(VoH, uEta.b))",
+      {"vec3 uEta"},
+      [](const Params& p, double VoH) {
+          return dvec3(F_Dielectric(VoH, p.eta.x), F_Dielectric(VoH, p.eta.y), F_Dielectric(VoH, p.eta.z));
+      }}},
+    {Fresnel::Conductor,
+     {"F_Conductor", {},
+      "vec3(F_Conductor(VoH, uEta.r, uK.r), F_Conductor(VoH, uEta.g, uK.g), F_Conductor(VoH, uEta.b, uK.b))",
+      {"vec3 uEta", "vec3 uK"},
+      [](const Params& p, double VoH) {
+          return dvec3(F_Conductor(VoH, p.eta.x, p.k.x), F_Conductor(VoH, p.eta.y, p.k.y),
+                       F_Conductor(VoH, p.eta.z, p.k.z));
+      }}},
+    {Fresnel::Spectral,
+     {"F_Spectral", {}, "F_Spectral(VoH, uSpectralEtaK, uSpectralWeight)",
+      {"vec2 uSpectralEtaK[HILITE_SPECTRAL_SAMPLES]", "vec3 uSpectralWeight[HILITE_SPECTRAL_SAMPLES]"},
+      [](const Params& p, double VoH) {
+          if (!p.spectrum) throw std::logic_error("fresnel spectral without a sampled spectrum (Params::spectrum)");
+          return F_Spectral(VoH, *p.spectrum);
+      }}},
+};
+
+// ---- Geometry: D G / (4 cos_i cos_o) from s = D (the Lambdas of the model's row, for the Smith rows) ----
+const std::vector<Keyed<Geometry, GeometryRow>> kGeometries = {
+    {Geometry::None,
+     {"", {}, "s /= 4.0 * wi.z * wo.z;  // G = 1", {},
+      [](const HalfVector&, const dvec3& wi, const dvec3& wo, double D, double, double) {
+          return D / (4.0 * wi.z * wo.z);
+      }}},
+    {Geometry::Implicit,
+     {"", {}, "s *= 0.25;  // implicit G = cos(theta_i) cos(theta_o) cancels the denominator", {},
+      [](const HalfVector&, const dvec3&, const dvec3&, double D, double, double) { return D * 0.25; }}},
+    {Geometry::CookTorrance,
+     {"G_CookTorrance", {}, "s *= G_CookTorrance(hv.NoH, wo.z, wi.z, hv.VoH) / (4.0 * wi.z * wo.z);", {},
+      [](const HalfVector& hv, const dvec3& wi, const dvec3& wo, double D, double, double) {
+          return D * G_CookTorrance(hv.NoH, wo.z, wi.z, hv.VoH) / (4.0 * wi.z * wo.z);
+      }}},
+    {Geometry::SmithSeparable,
+     {"G2_SmithSeparable", {}, "s *= G2_SmithSeparable(lambda(wi), lambda(wo)) / (4.0 * wi.z * wo.z);", {},
+      [](const HalfVector&, const dvec3& wi, const dvec3& wo, double D, double lambdaI, double lambdaO) {
+          return D * G2_SmithSeparable(lambdaI, lambdaO) / (4.0 * wi.z * wo.z);
+      }}},
+    {Geometry::Smith,
+     {"G2_SmithCorrelated", {}, "s *= G2_SmithCorrelated(lambda(wi), lambda(wo)) / (4.0 * wi.z * wo.z);", {},
+      [](const HalfVector&, const dvec3& wi, const dvec3& wo, double D, double lambdaI, double lambdaO) {
+          return D * G2_SmithCorrelated(lambdaI, lambdaO) / (4.0 * wi.z * wo.z);
+      }}},
+};
+
+// ---- Diffuse ----
+const std::vector<Keyed<Diffuse, DiffuseRow>> kDiffuses = {
+    {Diffuse::None, {"", {}, "vec3(0.0)", {}, [](const Params&, const dvec3&, const dvec3&) { return dvec3(0.0); }}},
+    {Diffuse::Lambert,
+     {"Fd_Lambert", {}, "Fd_Lambert(uAlbedo)", {"vec3 uAlbedo"},
+      [](const Params& p, const dvec3&, const dvec3&) { return Fd_Lambert(p.albedo); }}},
+    {Diffuse::OrenNayar,
+     {"Fd_OrenNayar", {}, "Fd_OrenNayar(uAlbedo, uSigma, wi.z, wo.z, dot(wi, wo))",
+      {"vec3 uAlbedo", "float uSigma"},  // sigma in radians
+      [](const Params& p, const dvec3& wi, const dvec3& wo) {
+          return Fd_OrenNayar(p.albedo, deg2rad(p.sigmaDeg), wi.z, wo.z, glm::dot(wi, wo));
+      }}},
+};
+
+}  // namespace
+
+bool anisotropicTerms(const Params& p) { return p.anisotropic() && allowsAnisotropy(p.model); }
+bool usesSmith(const Params& p) { return p.geometry == Geometry::Smith || p.geometry == Geometry::SmithSeparable; }
+
+const LobeRow& lobeRow(Model m) { return find(kLobes, m, "reflection lobe"); }
+const DistributionRow& distributionRow(const Params& p) {
+    return find(kDistributions, DistributionKey{p.model, anisotropicTerms(p)}, "NDF");
+}
+const LambdaRow& lambdaRow(const Params& p) {
+    return find(kLambdas, DistributionKey{p.model, anisotropicTerms(p)}, "Smith Lambda");
+}
+const FresnelRow& fresnelRow(Fresnel f) { return find(kFresnels, f, "Fresnel"); }
+const GeometryRow& geometryRow(Geometry g) { return find(kGeometries, g, "geometry"); }
+const DiffuseRow& diffuseRow(Diffuse d) { return find(kDiffuses, d, "diffuse"); }
+
+}  // namespace hilite::brdf
