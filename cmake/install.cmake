@@ -63,6 +63,8 @@ foreach(_layer IN LISTS HILITE_INSTALL_LAYERS)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/${_layer}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hilite/${_layer}
     FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
 endforeach()
+# The terms' one source, which brdf/terms.hpp includes (as C++ double) from the include path.
+install(FILES ${PROJECT_SOURCE_DIR}/shaders/brdf.glsl DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hilite/shaders)
 install(FILES ${PROJECT_SOURCE_DIR}/include/hilite/hilite.hpp ${PROJECT_BINARY_DIR}/include/hilite/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hilite)
 

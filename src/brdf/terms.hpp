@@ -32,7 +32,7 @@ inline double angleFromSinCos(double s, double c) { return std::atan2(s, c); }
 #define INLINE inline
 #define REAL_MIN std::numeric_limits<double>::min()
 
-#include "../../shaders/brdf.glsl"
+#include "shaders/brdf.glsl"  // the repository root (build) or <prefix>/include/hilite (installed)
 
 #undef REAL
 #undef VEC2

@@ -1,5 +1,5 @@
 #pragma once
-// NDF tables for the tests: a GGX lobe sampled into the hand-painted format (issue 10).
+// NDF tables for the tests: a GGX lobe sampled into the hand-painted format.
 
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"

@@ -126,7 +126,7 @@ TEST_CASE("cli::brdf bad input: one line naming the flag, exit 2") {
     }
 }
 
-TEST_CASE("cli::render takes the issue-4 terms") {
+TEST_CASE("cli::render takes the reflectance terms") {
     const std::string png =
         (std::filesystem::temp_directory_path() / ("hilite-render4-" + std::to_string(getpid()) + ".png")).string();
     const auto r = hilite(

@@ -1,4 +1,4 @@
-// The GLSL terms of issue 4 against their double twins (src/brdf/), pixel by pixel, within 1e-4
+// The GLSL terms against their double twins (src/brdf/), pixel by pixel, within 1e-4
 // relative: every new NDF, Fresnel, geometry and diffuse term and the classic Phong lobe, each in a
 // program assembled with only the blocks it runs.
 
@@ -94,8 +94,8 @@ std::vector<TermCase> termCases() {
         {"Fd_Lambert + D_GGX", withDiffuse(base(Model::GGX, Geometry::Smith), Diffuse::Lambert)},
         {"Fd_OrenNayar", withDiffuse(base(Model::None), Diffuse::OrenNayar)},
         {"Fd_OrenNayar + Phong_Normalized", withDiffuse(base(Model::Phong), Diffuse::OrenNayar)},
-        {"Retro_Normalized", base(Model::Retro)},  // issue 10 (its framing: tests/gl/test_retro.cpp)
-        {"D_Tabulated", tabulated(Geometry::Implicit)},  // issue 10: a GGX table (tests/gl/test_ndf_table.cpp)
+        {"Retro_Normalized", base(Model::Retro)},  // its framing: tests/gl/test_retro.cpp
+        {"D_Tabulated", tabulated(Geometry::Implicit)},  // A GGX table (tests/gl/test_ndf_table.cpp)
         {"D_Tabulated + Lambda_Tabulated + F_Schlick",
          withFresnel(tabulated(Geometry::Smith), Fresnel::Schlick, dvec3(1.5))},
     };
@@ -110,7 +110,7 @@ PinholeCamera measureCamera(const render::Scene& s, double fov, int w, int h) {
 
 }  // namespace
 
-TEST_CASE("render::Renderer every issue-4 term matches its double twin within 1e-4") {
+TEST_CASE("render::Renderer every reflectance term matches its double twin within 1e-4") {
     auto& env = test::glEnv();
     std::map<std::string, double> worst;
     for (const TermCase& t : termCases())
