@@ -6,11 +6,13 @@
 #include "cli/commands.hpp"
 #include "experiments/experiment.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 #include "experiments/results.hpp"
 
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -33,8 +35,12 @@ struct RunFlags {
 void parseShard(const std::string& s, int& k, int& n) {
     k = 1, n = 1;
     if (s.empty()) return;
-    if (std::sscanf(s.c_str(), "%d/%d", &k, &n) != 2 || n < 1 || k < 1 || k > n || s.find('/') == std::string::npos)
+    const auto parts = split(s, '/');
+    const auto a = parts.size() == 2 ? parseNumber(parts[0]) : std::nullopt;
+    const auto b = parts.size() == 2 ? parseNumber(parts[1]) : std::nullopt;
+    if (!a || !b || *a != std::floor(*a) || *b != std::floor(*b) || !(*b >= 1 && *b <= 1e6) || *a < 1 || *a > *b)
         throw InputError("--shard: expected K/N with 1 <= K <= N (got '" + s + "')");
+    k = int(*a), n = int(*b);
 }
 
 void progress(size_t done, size_t total, double seconds) {
