@@ -17,10 +17,27 @@ std::string groupName(scene::Table t) {
 
 std::string helpText(const scene::Param& p, const std::string& def) {
     std::string h = p.help;
-    if (p.kind != scene::Kind::Switch && p.kind != scene::Kind::Path && p.kind != scene::Kind::List)
+    // A choice's help names its values already.
+    if (p.kind != scene::Kind::Switch && p.kind != scene::Kind::Path && p.kind != scene::Kind::List &&
+        p.kind != scene::Kind::Choice)
         h += "; " + p.allowed() + (p.unit.empty() ? "" : " " + p.unit);
     if (!def.empty() && p.kind != scene::Kind::Switch) h += " (default " + def + ")";
     return h;
+}
+
+const char* typeName(scene::Kind k) {
+    switch (k) {
+        case scene::Kind::Number: return "NUM";
+        case scene::Kind::Integer: return "INT";
+        case scene::Kind::Choice: return "NAME";
+        case scene::Kind::Rgb: return "V|R,G,B";
+        case scene::Kind::Switch: return "";
+        case scene::Kind::Path: return "FILE";
+        case scene::Kind::Angles: return "DEG|LIST|RANGE";
+        case scene::Kind::Size: return "PX|WxH";
+        case scene::Kind::List: return "NAME=VALUE";
+    }
+    return "";
 }
 
 }  // namespace
@@ -57,6 +74,7 @@ void addParamFlags(CLI::App& app, SceneOptions& o, const std::function<bool(cons
             opt->check(CLI::Validator([entry](std::string& v) { return scene::check(*entry, v); }, ""));
         }
         opt->group(groupName(p.table));
+        if (p.kind != scene::Kind::Switch) opt->type_name(typeName(p.kind));
     }
 }
 
