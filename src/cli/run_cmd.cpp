@@ -106,8 +106,8 @@ int runMerge(const MergeFlags& f) {
     for (const auto& r : rows)
         if (!seen.insert(r["config"].get<long>()).second)
             throw InputError("merge: configuration " + r["config"].dump() + " appears in more than one shard");
+    ExperimentRunner runner(exp, f.backend);  // checks the backend and [match] before anything is written
     fs::create_directories(f.out);
-    ExperimentRunner runner(exp, f.backend);
     experiments::ResultsWriter::writeAll(f.out, runner.columns(), rows);
     experiments::writeExperimentCopy(exp, f.out);
     const size_t expected = exp.configurations().size();

@@ -110,7 +110,6 @@ private:
     const measure::Shape& reference(const Configuration& c, scene::Values values);
 
     const Experiment& m_exp;
-    std::string m_backend;
     std::vector<std::string> m_columns;
     double m_targetMajorDeg = 0;
     std::map<std::string, double> m_matched;             ///< model -> matched width parameter

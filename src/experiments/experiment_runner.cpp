@@ -38,7 +38,7 @@ void addErrors(nlohmann::json& row, const measure::Shape& ref) {
 }  // namespace
 
 ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backend)
-    : m_exp(e), m_backend(backend), m_session(backend) {
+    : m_exp(e), m_session(backend) {
     m_columns.push_back("config");
     // Case axes: the case names and tags come first, after config (what the row is about).
     for (const auto& a : e.axes)

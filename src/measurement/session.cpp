@@ -6,7 +6,9 @@
 
 namespace hilite::measurement {
 
-Session::Session(std::string backend) : m_backend(std::move(backend)) {}
+Session::Session(std::string backend) : m_backend(std::move(backend)) {
+    scene::backendOf(m_backend);  // an unknown backend is refused now, before a caller writes anything
+}
 Session::~Session() = default;
 
 render::Renderer& Session::rendererFor(const scene::Resolved& r) {
@@ -21,9 +23,7 @@ render::Renderer& Session::rendererFor(const scene::Resolved& r) {
         }
     }
     if (!m_renderer) {
-        scene::Resolved b;
-        b.backend = backend;
-        m_context = std::make_unique<gl::Context>(scene::backendOf(b));
+        m_context = std::make_unique<gl::Context>(scene::backendOf(backend));
         m_renderer = std::make_unique<render::Renderer>(*m_context);
     }
     m_renderer->setShaderTimeLimit(r.shaderTimeoutS);

@@ -18,7 +18,7 @@ namespace hilite::measurement {
 
 class Session {
 public:
-    /// `backend`: "" ($HILITE_GL_BACKEND, else auto), "auto", "osmesa" or "egl".
+    /// `backend`: "" ($HILITE_GL_BACKEND, else auto), "auto", "osmesa" or "egl"; InputError for another name.
     explicit Session(std::string backend = "");
     ~Session();
     Session(const Session&) = delete;

@@ -326,10 +326,10 @@ Resolved resolve(const Values& values, Purpose purpose) {
     return r;
 }
 
-gl::Backend backendOf(const Resolved& r) {
-    if (r.backend.empty()) return gl::backendFromEnvironment();
-    if (auto b = gl::parseBackend(r.backend)) return *b;
-    throw InputError("--gl-backend: unknown '" + r.backend + "' (allowed: auto, osmesa, egl)");
+gl::Backend backendOf(const std::string& name) {
+    if (name.empty()) return gl::backendFromEnvironment();
+    if (auto b = gl::parseBackend(name)) return *b;
+    throw InputError("--gl-backend: unknown '" + name + "' (allowed: auto, osmesa, egl)");
 }
 
 PinholeCamera viewCamera(const Resolved& r, View view, int width, int height) {

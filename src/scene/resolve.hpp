@@ -72,8 +72,10 @@ Resolved resolve(const Values& values, Purpose purpose = Purpose::Measure);
 
 /// The camera of the resolved view at the scene's incidence.
 PinholeCamera viewCamera(const Resolved& r, View view, int width, int height);
-/// The GL backend of the resolved values (the environment's when none was given).
-gl::Backend backendOf(const Resolved& r);
+/// The GL backend named by `name` (--gl-backend: "" = $HILITE_GL_BACKEND, else auto); InputError if unknown.
+gl::Backend backendOf(const std::string& name);
+/// The GL backend of the resolved values.
+inline gl::Backend backendOf(const Resolved& r) { return backendOf(r.backend); }
 /// The row columns of the resolved scene: every registry parameter that applies, as rendered.
 nlohmann::json parameterColumns(const Resolved& r);
 

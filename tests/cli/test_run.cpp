@@ -185,6 +185,9 @@ TEST_CASE("cli::run bad experiment files: one line, exit 2") {
     CHECK(sh(std::string(HILITE_EXE) + " run " + (d / "bad2.toml") + " -o " + (d / "bad2")) == 2);
     CHECK_FALSE(fs::exists(d / "bad2/results.csv"));
     CHECK_FALSE(fs::exists(d / "bad2"));  // not even the output folder
+    // An unknown GL backend is refused before anything is written (it was found at the first render).
+    CHECK(sh(std::string(HILITE_EXE) + " run eccentricity --gl-backend bogus -o " + (d / "gb")) == 2);
+    CHECK_FALSE(fs::exists(d / "gb"));
     for (const char* shard : {"1/2x", "3/2", "0/1", "1.5/2", "x"}) {  // a malformed --shard is refused, not truncated
         CAPTURE(shard);
         CHECK(sh(std::string(HILITE_EXE) + " run eccentricity --shard " + shard + " -o " + (d / "sh")) == 2);
