@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <vector>
 
 namespace hilite::brdf {
 
@@ -39,6 +40,23 @@ auto integrateGraded(F&& f, double end, double width) -> decltype(f(end)) {
     double a = 0.0, b = std::min(width / 8.0, end / 4.0);
     for (; b < end; a = b, b = std::min(2.0 * b, end)) sum += integratePanel(f, a, b);
     return sum + integratePanel(f, a, end);
+}
+
+/// The same with further panel edges `extra` (those in (0, end) are used): where the integrand has a kink
+/// or a jump, so that it stays smooth on every panel.
+template <class F>
+auto integrateGraded(F&& f, double end, double width, const std::vector<double>& extra) -> decltype(f(end)) {
+    using R = decltype(f(end));
+    std::vector<double> edges{0.0};
+    for (double b = std::min(width / 8.0, end / 4.0); b < end; b *= 2.0) edges.push_back(b);
+    for (double e : extra)
+        if (e > 0.0 && e < end) edges.push_back(e);
+    std::sort(edges.begin(), edges.end());
+    edges.push_back(end);
+    R sum = R(0.0);
+    for (size_t i = 0; i + 1 < edges.size(); ++i)
+        if (edges[i + 1] > edges[i]) sum += integratePanel(f, edges[i], edges[i + 1]);
+    return sum;
 }
 
 /// Angular width of the model's lobe in radians (the grading scale): Blinn/Phong sqrt(2 / (n + 2)),
