@@ -144,9 +144,12 @@ void cookTorranceAzimuths(const dvec3& wi, std::vector<double>& phis) {
     }
 }
 
-/// Rows of a tabulated NDF (D linear between them: kinks in theta_h) below `end`.
+/// Rows of a tabulated NDF (D linear between them: kinks in theta_h) below `end`, for tables of at most
+/// kMaxTableEdges rows: a panel per row of a 401-row table costs ~1 s per albedo, and a table that dense
+/// has kinks small enough for the graded panels.
+constexpr size_t kMaxTableEdges = 64;
 void tableEdges(const Params& p, double end, std::vector<double>& edges) {
-    if (p.model != Model::Tabulated || !p.ndfTable) return;
+    if (p.model != Model::Tabulated || !p.ndfTable || p.ndfTable->theta.size() > kMaxTableEdges) return;
     for (double t : p.ndfTable->theta)
         if (t > 0.0 && t < end) edges.push_back(t);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Quadrature in double for the physics of the BRDF: the NDF's normalization int D(h) (n.h) dw and the
 // directional-hemispherical reflectance (albedo). Lobes as narrow as n = 1e4 or alpha = 0.02 are
-// resolved by Gauss-Legendre panels graded geometrically about the lobe's peak.
+// resolved by Gauss-Legendre panels graded geometrically about the lobe's peak, ending on the horizon.
 
 #include "brdf/params.hpp"
 #include "core/math.hpp"
@@ -68,8 +68,12 @@ double ndfIntegral(const Params& p);
 
 /// Directional-hemispherical reflectance rho(wi) = int f(wi, wo) cos(theta_o) dwo per channel, light
 /// at (thetaDeg, phiDeg). The specular part is integrated over the half vector (dwo = 4 (wi.h) dwh) or
-/// about the mirror direction (reflection lobes), the diffuse part over wo. Relative error < 1e-6 for
-/// smooth integrands; the horizon cut of a lobe at grazing costs more (< 1e-3).
+/// about the mirror direction (reflection lobes), the diffuse part over wo. The horizon cut (wo.z = 0) is a
+/// panel edge in closed form per azimuth, so the integrand is smooth on every panel. Measured
+/// (tests/brdf/test_albedo_exact.cpp): the closed forms at normal incidence with G = 1 (GGX, Beckmann,
+/// Blinn-Phong) within 8e-16; an adaptive Gauss-Kronrod reference over wo at 30, 60, 85 deg within 1.1e-7
+/// for every model and geometry term, anisotropic too, and 5e-13 for narrow lobes (alpha 0.02, n = 1e4)
+/// up to 89 deg. Tabulated NDFs of more than 64 rows and the Beckmann Lambda's cut are kinks inside panels.
 dvec3 albedo(const Params& p, double thetaDeg, double phiDeg = 0.0);
 
 }  // namespace hilite::brdf
