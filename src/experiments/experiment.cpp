@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "core/text.hpp"
 #include "io/image_io.hpp"
+#include "measurement/row.hpp"
 #include "scene/scene_file.hpp"
 
 #include "experiments/reports.hpp"
@@ -15,6 +16,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
+#include <optional>
 #include <sstream>
 
 namespace hilite::experiments {
@@ -27,35 +30,159 @@ std::string line(const std::string& file, const toml::node& n) {
     return file + ":" + std::to_string(n.source().begin.line);
 }
 
+/// toml++'s name of a value's type, for "expected a string (got an integer)".
+std::string typeName(const toml::node& n) {
+    switch (n.type()) {
+        case toml::node_type::table: return "a table";
+        case toml::node_type::array: return "an array";
+        case toml::node_type::string: return "a string";
+        case toml::node_type::integer: return "an integer";
+        case toml::node_type::floating_point: return "a number";
+        case toml::node_type::boolean: return "a boolean";
+        default: return "a date or time";
+    }
+}
+
+/// A value quoted in a message: one line, at most 80 bytes.
+std::string printable(std::string s) {
+    if (s.size() > 80) s = s.substr(0, 77) + "...";
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return s;
+}
+
+/// One table of an experiment file with a fixed set of keys: an unknown key is refused (with a did-you-mean
+/// hint, as scene files do), and each typed read refuses a value of another type, naming file:line: table.key.
+class Fields {
+public:
+    Fields(const toml::table& t, const std::string& file, std::string table, std::vector<std::string> allowed)
+        : m_t(t), m_file(file), m_table(std::move(table)), m_allowed(std::move(allowed)) {
+        for (const auto& [k, v] : t) {
+            const std::string key(k.str());
+            if (std::find(m_allowed.begin(), m_allowed.end(), key) != m_allowed.end()) continue;
+            const std::string hint = didYouMean(key, m_allowed);
+            throw InputError(line(file, v) + ": " + m_table + "." + key + ": unknown key" +
+                             (hint.empty() ? "" : ", did you mean '" + hint + "'?") + " (allowed: " + join(m_allowed) + ")");
+        }
+    }
+    const toml::node* node(const std::string& key) const { return m_t.get(key); }
+    /// "file:line: table.key", the line of the value (of the table when the key is absent).
+    std::string at(const std::string& key) const {
+        const toml::node* n = node(key);
+        return line(m_file, n ? *n : static_cast<const toml::node&>(m_t)) + ": " + m_table + "." + key;
+    }
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+        throw InputError(at(key) + ": " + message);
+    }
+    std::optional<std::string> string(const std::string& key) const {
+        const toml::node* n = node(key);
+        if (!n) return std::nullopt;
+        if (!n->is_string()) fail(key, "expected a string (got " + typeName(*n) + ")");
+        return n->as_string()->get();
+    }
+    std::string string(const std::string& key, const std::string& fallback) const {
+        return string(key).value_or(fallback);
+    }
+    bool boolean(const std::string& key, bool fallback) const {
+        const toml::node* n = node(key);
+        if (!n) return fallback;
+        if (!n->is_boolean()) fail(key, "expected true or false (got " + typeName(*n) + ")");
+        return n->as_boolean()->get();
+    }
+    const toml::array* array(const std::string& key) const {
+        const toml::node* n = node(key);
+        if (n && !n->is_array()) fail(key, "expected an array [...] (got " + typeName(*n) + ")");
+        return n ? n->as_array() : nullptr;
+    }
+    std::vector<double> numbers(const std::string& key) const {
+        std::vector<double> out;
+        if (const auto* a = array(key))
+            for (const auto& x : *a) {
+                const auto v = x.is_number() ? x.value<double>() : std::nullopt;
+                if (!v || !std::isfinite(*v)) fail(key, "expected finite numbers (got " + typeName(x) + ")");
+                out.push_back(*v);
+            }
+        return out;
+    }
+    std::vector<std::string> strings(const std::string& key) const {
+        std::vector<std::string> out;
+        if (const auto* a = array(key))
+            for (const auto& x : *a) {
+                if (!x.is_string()) fail(key, "expected strings (got " + typeName(x) + ")");
+                out.push_back(x.as_string()->get());
+            }
+        return out;
+    }
+    /// The name of a file the experiment writes: in the output folder, with the picture extension.
+    std::string outputFile(const std::string& key, const std::string& fallback) const {
+        const std::string name = string(key, fallback);
+        const std::string why = outputNameError(name, kPictureExtension);
+        if (!why.empty()) fail(key, "'" + printable(name) + "': " + why + " (a file name in the output folder, e.g. plot.png)");
+        return name;
+    }
+    const std::string& file() const { return m_file; }
+    const std::string& table() const { return m_table; }
+    const toml::table& raw() const { return m_t; }
+
+private:
+    const toml::table& m_t;
+    const std::string& m_file;
+    std::string m_table;
+    std::vector<std::string> m_allowed;
+};
+
+/// The pictures the reports write, each claimed with where it was named: two plots named alike would
+/// overwrite each other's picture, data and script (stem.png, stem.dat, stem.gp). The result files
+/// (results.csv, results.jsonl, experiment.toml, summary.md) are safe by the fixed .png extension.
+class Names {
+public:
+    void claim(const std::string& file, const std::string& where, const std::string& what = "") {
+        const std::string stem = file.substr(0, file.rfind('.'));
+        const auto [it, fresh] = m_used.emplace(stem, where);
+        if (!fresh)
+            throw InputError(where + ": " + what + "'" + file + "' is also written by " + it->second +
+                             " (each picture needs its own name)");
+    }
+
+private:
+    std::map<std::string, std::string> m_used;  ///< stem -> "file:line: table.key" that named it
+};
+
 nlohmann::json typed(const std::string& v) {
     const auto d = parseNumber(v);
     if (d && std::isfinite(*d)) return *d;
     return v;
 }
 
-/// A scalar TOML value as JSON (tags are strings, numbers or booleans).
 nlohmann::json scalar(const toml::node& v, const std::string& where) {
     if (auto x = v.value_exact<std::string>()) return *x;
     if (auto x = v.value_exact<bool>()) return *x;
-    if (auto x = v.value<double>()) return *x;
-    throw InputError(where + ": a tag is a string, a number or a boolean");
+    if (auto x = v.value<double>(); x && v.is_number() && std::isfinite(*x)) return *x;
+    throw InputError(where + ": a tag is a string, a finite number or a boolean (got " + typeName(v) + ")");
+}
+
+/// "the scene tables material, light, ..." for messages, from the registry.
+std::string sceneTables() {
+    std::vector<std::string> names;
+    for (scene::Table t : scene::tables()) names.emplace_back(scene::toString(t));
+    return "the scene tables " + join(names);
 }
 
 /// Scene tables of a case (or of its `reference`), each key checked against the schema.
 scene::Values caseValues(const toml::table& t, const std::string& file, const std::string& what,
                          std::initializer_list<const char*> special) {
-    toml::table scene;
+    scene::Values out;
     for (const auto& [k, v] : t) {
         const std::string key(k.str());
         if (std::find_if(special.begin(), special.end(), [&](const char* s) { return key == s; }) != special.end())
             continue;
         if (!v.is_table())
-            throw InputError(line(file, v) + ": " + what + ": " + key +
-                             ": unknown key (allowed: name, tags, reference and the scene tables material, light, "
-                             "camera, measurement)");
-        scene.insert(key, *v.as_table());
+            throw InputError(line(file, v) + ": " + what + "." + key + ": unknown key (allowed: " +
+                             (special.size() ? "name, tags, reference and " : "") + sceneTables() + ")");
+        // Key by key from the file's own nodes: a copied table would lose their lines (messages said "file:0").
+        for (const auto& [name, value] : *v.as_table()) scene::setKey(out, file, key + "." + std::string(name.str()), value);
     }
-    return scene::sceneValues(scene, file);
+    return out;
 }
 
 /// `cases = [{ name = "...", tags = {...}, reference = {...}, material = {...}, ... }, ...]`.
@@ -63,71 +190,86 @@ std::vector<SweepCase> parseCases(const toml::array& cases, const std::string& f
     std::vector<SweepCase> out;
     for (const auto& c : cases) {
         const auto* t = c.as_table();
-        if (!t) throw InputError(line(file, c) + ": sweep " + key + ": each case is a table { name = \"...\", ... }");
+        if (!t)
+            throw InputError(line(file, c) + ": sweep.cases: each case is a table { name = \"...\", ... } (got " +
+                             typeName(c) + ")");
         SweepCase sc;
-        const auto name = (*t)["name"].value<std::string>();
-        if (!name || name->empty()) throw InputError(line(file, c) + ": sweep " + key + ": a case needs name = \"...\"");
-        sc.name = *name;
+        const toml::node* nameNode = t->get("name");
+        if (!nameNode || !nameNode->is_string() || nameNode->as_string()->get().empty())
+            throw InputError(line(file, nameNode ? *nameNode : c) + ": sweep.cases.name: a case of " + key +
+                             " needs name = \"...\" (a non-empty string)");
+        sc.name = nameNode->as_string()->get();
         for (const auto& o : out)
-            if (o.name == sc.name) throw InputError(line(file, c) + ": sweep " + key + ": two cases named '" + sc.name + "'");
-        const std::string what = "sweep " + key + " case '" + sc.name + "'";
+            if (o.name == sc.name) throw InputError(line(file, c) + ": sweep.cases.name: two cases of " + key + " named '" + sc.name + "'");
+        const std::string what = "sweep.cases";
         sc.tags = nlohmann::json::object();
         for (const char* k : {"tags", "reference"})  // both are tables; anything else would be dropped silently
             if ((*t)[k] && !(*t)[k].is_table())
-                throw InputError(line(file, *(*t)[k].node()) + ": " + what + ": " + k + " = { ... } (a table)");
+                throw InputError(line(file, *(*t)[k].node()) + ": " + what + "." + k + ": expected a table { ... } (got " +
+                                 typeName(*(*t)[k].node()) + ")");
         if (const auto* tags = (*t)["tags"].as_table())
-            for (const auto& [k, v] : *tags) sc.tags[std::string(k.str())] = scalar(v, line(file, v) + ": " + what);
-        if (const auto* ref = (*t)["reference"].as_table()) sc.reference = caseValues(*ref, file, what + " reference", {});
+            for (const auto& [k, v] : *tags) {
+                const std::string tag(k.str());
+                if (tag == "config" || tag == key)
+                    throw InputError(line(file, v) + ": sweep.cases.tags." + tag + ": a tag cannot be named like the " +
+                                     (tag == "config" ? "configuration index column" : "axis"));
+                sc.tags[tag] = scalar(v, line(file, v) + ": sweep.cases.tags." + tag);
+            }
+        if (const auto* ref = (*t)["reference"].as_table()) sc.reference = caseValues(*ref, file, what + ".reference", {});
         sc.values = caseValues(*t, file, what, {"name", "tags", "reference"});
         out.push_back(sc);
     }
     return out;
 }
 
-SweepAxis parseAxis(const toml::table& t, const std::string& file) {
-    SweepAxis axis;
-    const auto key = t["key"].value<std::string>();
-    if (!key) throw InputError(line(file, t) + ": sweep: needs key = \"table.key\"");
-    axis.key = *key;
-    auto add = [&](const toml::node& v, const std::string& origin) {
+/// The values of a sweep axis or of a contact sheet's rows or columns: one scene assignment each.
+void addValues(SweepAxis& axis, const toml::array& values, const std::string& file) {
+    for (const auto& v : values) {
         scene::Values one;
         scene::setKey(one, file, axis.key, v);
-        if (!origin.empty()) {  // a range's values all come from its line
-            const auto& [name, value] = *one.given().begin();
-            scene::Values relabelled;
-            relabelled.set(name, value.text, origin);
-            one = relabelled;
-        }
+        if (one.given().empty())  // an empty list of NAME=VALUE assignments: nothing to sweep
+            throw InputError(line(file, v) + ": " + axis.key + ": an empty value");
         axis.values.push_back(one.given().begin()->second.text);
         axis.entries.push_back(one);
-    };
-    if (const auto* range = t["range"].as_array()) {
-        std::vector<double> r;
-        for (const auto& x : *range)
-            if (auto v = x.value<double>()) r.push_back(*v);
-        if (r.size() != 3 || !(r[2] > 0) || r[1] < r[0])
-            throw InputError(line(file, *range) + ": sweep " + axis.key + ": range = [start, stop, step], step > 0");
+    }
+}
+
+SweepAxis parseAxis(const toml::table& t, const std::string& file) {
+    const Fields f(t, file, "sweep", {"key", "values", "range", "cases"});
+    SweepAxis axis;
+    const auto key = f.string("key");
+    if (!key || key->empty()) f.fail("key", "needs key = \"table.key\" (a scene key, e.g. light.incidence)");
+    axis.key = *key;
+    int given = 0;
+    for (const char* k : {"values", "range", "cases"}) given += f.node(k) != nullptr;
+    if (given != 1)
+        f.fail(given ? "values" : "key", std::string(given ? "give only one of" : "needs one of") +
+                                            " values = [...], range = [start, stop, step] or cases = [{ name = ..., ... }]");
+    if (f.node("range")) {
+        const std::vector<double> r = f.numbers("range");
+        if (r.size() != 3 || !(r[2] > 0) || r[1] < r[0]) f.fail("range", "range = [start, stop, step], start <= stop, step > 0");
         const double count = std::floor((r[1] - r[0]) / r[2] + 1e-9) + 1;
         if (!std::isfinite(count) || count > double(kMaxConfigurations))
-            throw InputError(line(file, *range) + ": sweep " + axis.key + ": range gives more than " +
-                             std::to_string(kMaxConfigurations) + " values");
+            f.fail("range", "gives more than " + std::to_string(kMaxConfigurations) + " values");
         const long n = long(count) - 1;
+        const std::string origin = f.at("range");
         for (long i = 0; i <= n; ++i) {
-            const toml::value<double> v(r[0] + double(i) * r[2]);
-            add(v, line(file, *range) + ": " + axis.key);
+            scene::Values one;
+            scene::setKey(one, file, axis.key, toml::value<double>(r[0] + double(i) * r[2]));
+            const auto& [name, value] = *one.given().begin();  // a range's values all come from its line
+            scene::Values relabelled;
+            relabelled.set(name, value.text, origin);
+            axis.values.push_back(value.text);
+            axis.entries.push_back(relabelled);
         }
-    } else if (const auto* values = t["values"].as_array()) {
-        for (const auto& v : *values) add(v, "");
-    } else if (const auto* cases = t["cases"].as_array()) {
-        axis.cases = parseCases(*cases, file, axis.key);
-        if (axis.cases.empty()) throw InputError(line(file, t) + ": sweep " + axis.key + ": no cases");
-        for (const auto& c : axis.cases) axis.values.push_back(c.name);
-        return axis;
+    } else if (f.node("values")) {
+        addValues(axis, *f.array("values"), file);
+        if (axis.entries.empty()) f.fail("values", "no values");
     } else {
-        throw InputError(line(file, t) + ": sweep " + axis.key +
-                         ": needs values = [...], range = [start, stop, step] or cases = [{ name = ..., ... }]");
+        axis.cases = parseCases(*f.array("cases"), file, axis.key);
+        if (axis.cases.empty()) f.fail("cases", "no cases");
+        for (const auto& c : axis.cases) axis.values.push_back(c.name);
     }
-    if (axis.entries.empty()) throw InputError(line(file, t) + ": sweep " + axis.key + ": no values");
     return axis;
 }
 
@@ -147,41 +289,60 @@ std::string findExperiment(const std::string& name) {
 
 namespace {
 
-int wholeNumber(const toml::node_view<toml::node>& v, const std::string& file, const std::string& key, int lo, int hi,
-                int fallback) {
+int wholeNumber(const Fields& f, const std::string& key, int lo, int hi, int fallback) {
+    const toml::node* v = f.node(key);
     if (!v) return fallback;
-    const auto x = v.value_exact<int64_t>();
+    const auto x = v->value_exact<int64_t>();
     if (!x || *x < lo || *x > hi)
-        throw InputError(line(file, *v.node()) + ": " + key + ": a whole number in [" + std::to_string(lo) + ", " +
-                         std::to_string(hi) + "]");
+        f.fail(key, "a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return int(*x);
 }
 
+/// A top-level table of the file (e.g. [summary]), nullptr when absent; anything but a table is refused.
+const toml::table* table(const toml::table& doc, const std::string& path, const std::string& name) {
+    const toml::node* n = doc.get(name);
+    if (!n) return nullptr;
+    if (!n->is_table())
+        throw InputError(line(path, *n) + ": " + name + ": write it as a table [" + name + "] (got " + typeName(*n) + ")");
+    return n->as_table();
+}
+
+/// A top-level array of tables (e.g. [[plot]]); anything else (a single [plot] table, plot = [1, 2]) is refused.
+std::vector<const toml::table*> tables(const toml::table& doc, const std::string& path, const std::string& name) {
+    std::vector<const toml::table*> out;
+    const toml::node* n = doc.get(name);
+    if (!n) return out;
+    const auto* a = n->as_array();
+    if (a)
+        for (const auto& el : *a)
+            if (el.is_table()) out.push_back(el.as_table());
+    if (!a || out.size() != a->size())
+        throw InputError(line(path, *n) + ": " + name + ": write it as [[" + name + "]] tables, one per " + name +
+                         " (got " + (a ? "an array of other values" : typeName(*n)) + ")");
+    return out;
+}
+
 /// [reference], [timing] and [pareto]: the tables of an accuracy/cost study.
-void parseErrorTables(toml::table& doc, const std::string& path, Experiment& e) {
-    if (const auto* ref = doc["reference"].as_table()) e.referenceErrors = (*ref)["errors"].value_or(true);
-    if (doc["timing"].as_table()) {
+void parseErrorTables(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
+    if (const auto* ref = table(doc, path, "reference")) e.referenceErrors = Fields(*ref, path, "reference", {"errors"}).boolean("errors", true);
+    if (const auto* timing = table(doc, path, "timing")) {
+        const Fields f(*timing, path, "timing", {"repeats", "warmup"});
         e.timing = true;
-        e.repeats = wholeNumber(doc["timing"]["repeats"], path, "timing.repeats", 1, 1000, 5);
-        e.warmup = wholeNumber(doc["timing"]["warmup"], path, "timing.warmup", 0, 1000, 1);
+        e.repeats = wholeNumber(f, "repeats", 1, 1000, 5);
+        e.warmup = wholeNumber(f, "warmup", 0, 1000, 1);
     }
-    if (const auto* pareto = doc["pareto"].as_array()) {
-        for (const auto& p : *pareto) {
-            const auto* t = p.as_table();
-            if (!t) throw InputError(line(path, p) + ": [[pareto]] entries are tables");
-            ParetoSpec spec;
-            spec.file = (*t)["file"].value_or(spec.file);
-            spec.title = (*t)["title"].value_or(spec.title);
-            spec.setting = (*t)["setting"].value_or(spec.setting);
-            spec.series = (*t)["series"].value_or(spec.series);
-            spec.error = (*t)["error"].value_or(spec.error);
-            spec.time = (*t)["time"].value_or(spec.time);
-            if (const auto* targets = (*t)["targets"].as_array())
-                for (const auto& x : *targets) spec.targets.push_back(x.value_or(0.0));
-            e.pareto.push_back(spec);
-        }
-    } else if (doc["pareto"]) {
-        throw InputError(line(path, *doc["pareto"].node()) + ": pareto: write it as [[pareto]] (one per plot)");
+    for (const auto* t : tables(doc, path, "pareto")) {
+        const Fields f(*t, path, "pareto", {"file", "title", "setting", "series", "error", "time", "targets"});
+        ParetoSpec spec;
+        spec.file = f.outputFile("file", spec.file);
+        names.claim(spec.file, f.at("file"));
+        spec.title = f.string("title", spec.title);
+        spec.setting = f.string("setting", spec.setting);
+        spec.series = f.string("series", spec.series);
+        spec.error = f.string("error", spec.error);
+        spec.time = f.string("time", spec.time);
+        spec.targets = f.numbers("targets");
+        e.pareto.push_back(spec);
     }
 }
 
@@ -193,90 +354,181 @@ namespace {
 
 /// Every top-level table must be one an experiment has.
 void checkTables(const toml::table& doc, const std::string& path) {
+    static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
+                                                     "contact_sheet", "strip", "summary", "reference", "timing", "pareto"};
     for (const auto& [k, v] : doc) {
-        static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
-                                                         "contact_sheet", "strip", "summary", "reference", "timing", "pareto"};
-        const std::string table(k.str());
-        if (std::find(allowed.begin(), allowed.end(), table) == allowed.end()) {
-            const std::string hint = didYouMean(table, allowed);
-            throw InputError(line(path, v) + ": " + table + ": unknown table" +
-                             (hint.empty() ? std::string() : " (did you mean '" + hint + "'?)") +
-                             "; allowed: experiment, scene, sweep, match, plot, contact_sheet, strip, summary, reference, "
-                             "timing, pareto");
+        const std::string name(k.str());
+        if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+            const std::string hint = didYouMean(name, allowed);
+            throw InputError(line(path, v) + ": " + name + ": unknown table" +
+                             (hint.empty() ? std::string() : ", did you mean '" + hint + "'?") + " (allowed: " +
+                             join(allowed) + ")");
         }
     }
 }
 
-void parsePlots(toml::table& doc, const std::string& path, Experiment& e) {
-    if (const auto* plots = doc["plot"].as_array())
-        for (const auto& p : *plots) {
-            if (!p.is_table()) throw InputError(line(path, p) + ": [[plot]] entries are tables");
-            const auto& t = *p.as_table();
-            PlotSpec spec;
-            spec.file = t["file"].value_or(std::string("plot.png"));
-            spec.title = t["title"].value_or(std::string());
-            spec.x = t["x"].value_or(std::string("incidence_deg"));
-            spec.y = t["y"].value_or(std::string("aspect"));
-            spec.series = t["series"].value_or(std::string());
-            spec.xlabel = t["xlabel"].value_or(std::string());
-            spec.ylabel = t["ylabel"].value_or(std::string());
-            spec.key = t["key"].value_or(spec.key);
-            spec.logx = t["logx"].value_or(false);
-            spec.logy = t["logy"].value_or(false);
-            if (const auto* th = t["theory"].as_array())
-                for (const auto& c : *th)
-                    if (const auto* pair = c.as_array(); pair && pair->size() == 2)
-                        spec.theory.emplace_back((*pair)[0].value_or(std::string()), (*pair)[1].value_or(std::string()));
-            e.plots.push_back(spec);
-        }
+void parsePlots(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
+    for (const auto* t : tables(doc, path, "plot")) {
+        const Fields f(*t, path, "plot",
+                       {"file", "title", "x", "y", "series", "xlabel", "ylabel", "key", "logx", "logy", "theory"});
+        PlotSpec spec;
+        spec.file = f.outputFile("file", "plot.png");
+        names.claim(spec.file, f.at("file"));
+        spec.title = f.string("title", "");
+        spec.x = f.string("x", "incidence_deg");
+        spec.y = f.string("y", "aspect");
+        spec.series = f.string("series", "");
+        spec.xlabel = f.string("xlabel", "");
+        spec.ylabel = f.string("ylabel", "");
+        spec.key = f.string("key", spec.key);
+        const auto& keys = plotKeys();
+        if (std::find(keys.begin(), keys.end(), spec.key) == keys.end())
+            f.fail("key", "unknown legend position (allowed: " + join(keys) + ")");
+        spec.logx = f.boolean("logx", false);
+        spec.logy = f.boolean("logy", false);
+        if (const auto* th = f.array("theory"))
+            for (const auto& c : *th) {
+                const auto* pair = c.as_array();
+                if (!pair || pair->size() != 2 || !(*pair)[0].is_string() || !(*pair)[1].is_string())
+                    throw InputError(line(path, c) + ": plot.theory: each curve is [\"title\", \"expression of x\"] (two strings)");
+                const std::string expr = (*pair)[1].as_string()->get();
+                const std::string why = theoryError(expr);
+                if (!why.empty())
+                    throw InputError(line(path, c) + ": plot.theory: '" + printable(expr) + "': " + why +
+                                     " (allowed: muparser syntax in the variable x, constants pi and _e, functions such "
+                                     "as sin, cos, tan, asin, acos, atan, sqrt, exp, ln, log10, abs, min, max)");
+                spec.theory.emplace_back((*pair)[0].as_string()->get(), expr);
+            }
+        e.plots.push_back(spec);
+    }
 }
 
-void parseSheet(toml::table& doc, const std::string& path, Experiment& e) {
-    if (const auto* sheet = doc["contact_sheet"].as_table()) {
-        e.sheetFile = (*sheet)["file"].value_or(e.sheetFile);
-        e.sheetSize = (*sheet)["size"].value_or(e.sheetSize);
-        e.sheetRowKey = (*sheet)["row_key"].value_or(std::string("material.model"));
-        e.sheetColumnKey = (*sheet)["column_key"].value_or(std::string("light.incidence"));
-        toml::table rt{{"key", e.sheetRowKey}}, ct{{"key", e.sheetColumnKey}};
-        if (auto* r = (*sheet)["rows"].as_array()) rt.insert("values", *r);
-        if (auto* c = (*sheet)["columns"].as_array()) ct.insert("values", *c);
-        const SweepAxis rows = parseAxis(rt, path), cols = parseAxis(ct, path);
+/// A contact sheet's rows or columns: `key` and its values, one scene assignment each.
+SweepAxis sheetAxis(const Fields& f, const std::string& keyName, const std::string& fallbackKey, const std::string& valuesName) {
+    SweepAxis axis;
+    axis.key = f.string(keyName, fallbackKey);
+    const toml::array* values = f.array(valuesName);
+    if (!values || values->empty()) f.fail(valuesName, "needs " + valuesName + " = [...] (values of " + axis.key + ")");
+    constexpr size_t kMaxTiles = 64;  // a sheet row of 64 tiles of 256 px is already 16384 px wide
+    if (values->size() > kMaxTiles) f.fail(valuesName, "at most " + std::to_string(kMaxTiles) + " values");
+    addValues(axis, *values, f.file());
+    return axis;
+}
+
+void parseSheet(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
+    if (const auto* sheet = table(doc, path, "contact_sheet")) {
+        const Fields f(*sheet, path, "contact_sheet", {"file", "size", "row_key", "rows", "column_key", "columns"});
+        e.sheetFile = f.outputFile("file", e.sheetFile);
+        names.claim(e.sheetFile, f.at("file"));
+        if (const toml::node* size = f.node("size"))  // "512x256" or 256, as in a scene file's [camera]
+            if (!(size->is_string() || size->is_integer()) || !scene::valueText(*size, e.sheetSize))
+                f.fail("size", "expected a size, 256 or \"256x192\" (got " + typeName(*size) + ")");
+        const SweepAxis rows = sheetAxis(f, "row_key", "material.model", "rows");
+        const SweepAxis cols = sheetAxis(f, "column_key", "light.incidence", "columns");
+        e.sheetRowKey = rows.key, e.sheetColumnKey = cols.key;
         e.sheetRows = rows.values, e.sheetRowValues = rows.entries;
         e.sheetColumns = cols.values, e.sheetColumnValues = cols.entries;
+        // Every tile's scene and the tile size now, not after every row was measured.
+        scene::Values sizeValue;
+        sizeValue.set("size", e.sheetSize, f.at("size"));
+        scene::resolve(sizeValue, scene::Purpose::Render);
+        for (const auto& r : e.sheetRowValues)
+            for (const auto& c : e.sheetColumnValues) {
+                scene::Values v = e.base;
+                v.merge(r);
+                v.merge(c);
+                if (scene::resolve(v).angles.size() != 1)
+                    throw InputError(v.where("incidence") + ": one angle per contact sheet tile");
+            }
     }
 }
 
-void parseStrips(toml::table& doc, const std::string& path, Experiment& e) {
-    if (const auto* strips = doc["strip"].as_array())
-        for (const auto& st : *strips) {
-            const auto* t = st.as_table();
-            const auto material = t ? (*t)["material"].value<std::string>() : std::nullopt;
-            if (!material) throw InputError(line(path, st) + ": [[strip]] needs material = \"NAME\"");
-            if (!brdf::findMaterial(*material)) {
-                std::string all;
-                for (const auto& m : brdf::materialNames()) all += (all.empty() ? "" : ", ") + m;
-                throw InputError(line(path, st) + ": strip.material: unknown '" + *material + "' (allowed: " + all + ")");
-            }
-            e.strips.emplace_back(*material, (*t)["file"].value_or(*material + "_strip.png"));
+void parseStrips(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
+    for (const auto* t : tables(doc, path, "strip")) {
+        const Fields f(*t, path, "strip", {"material", "file"});
+        const auto material = f.string("material");
+        if (!material) f.fail("material", "needs material = \"NAME\"");
+        if (!brdf::findMaterial(*material)) {
+            const std::string hint = didYouMean(*material, brdf::materialNames());
+            f.fail("material", "unknown '" + *material + "'" + (hint.empty() ? "" : ", did you mean '" + hint + "'?") +
+                                   " (allowed: " + join(brdf::materialNames()) + ")");
         }
+        e.strips.emplace_back(*material, f.outputFile("file", *material + "_strip.png"));
+        names.claim(e.strips.back().second, f.at("file"));
+        names.claim(*material + "_fresnel.png", f.at("material"), "its Fresnel plot ");
+    }
 }
 
-void parseSummary(toml::table& doc, const std::string& path, Experiment& e) {
-    if (const auto* summary = doc["summary"].as_table()) {
-        e.summarySeries = (*summary)["series"].value_or(std::string());
-        e.summaryX = (*summary)["x"].value_or(e.summaryX);
-        if (const auto* at = (*summary)["at"].as_array())
-            for (const auto& x : *at) e.summaryAt.push_back(x.value_or(0.0));
-        if (const auto* sections = (*summary)["sections"].as_array())
-            for (const auto& x : *sections) {
-                const auto name = x.value<std::string>();
-                if (!name || !isReportSection(*name))
-                    throw InputError(line(path, x) + ": summary.sections: unknown section (allowed: " +
-                                     join(reportSections()) + ")");
-                e.sections.push_back(*name);
+void parseSummary(const toml::table& doc, const std::string& path, Experiment& e) {
+    if (const auto* summary = table(doc, path, "summary")) {
+        const Fields f(*summary, path, "summary", {"series", "x", "at", "sections"});
+        e.summarySeries = f.string("series", "");
+        e.summaryX = f.string("x", e.summaryX);
+        e.summaryAt = f.numbers("at");
+        if (f.node("sections")) {
+            for (const auto& name : f.strings("sections")) {
+                if (!isReportSection(name))
+                    f.fail("sections", "unknown section '" + name + "' (allowed: " + join(reportSections()) + ")");
+                e.sections.push_back(name);
             }
-        else if (!e.summarySeries.empty())
+        } else if (!e.summarySeries.empty()) {
             e.sections.push_back("shape");
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<std::string> rowColumns(const Experiment& e) {
+    std::vector<std::string> out = {"config"};
+    auto add = [&](const std::string& c) {
+        if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+    };
+    for (const auto& a : e.axes)
+        if (!a.cases.empty()) {
+            add(a.key);
+            for (const auto& c : a.cases)
+                for (const auto& [k, v] : c.tags.items()) add(k);
+        }
+    for (const auto& c : scene::columns()) add(c);
+    for (const auto& c : measurement::measurementColumns()) add(c);
+    if (e.referenceErrors)
+        for (const char* c : {"ref_aspect", "ref_major_deg", "ref_minor_deg", "aspect_error", "major_error", "minor_error"}) add(c);
+    if (e.timing)
+        for (const char* c : {"time_ms", "repeats", "error_estimate"}) add(c);
+    return out;
+}
+
+namespace {
+
+/// The row fields plots, the summary and Pareto sections read must be columns the rows will have.
+void checkFields(const Experiment& e, const toml::table& doc) {
+    const std::vector<std::string> columns = rowColumns(e);
+    auto check = [&](const std::string& field, const toml::table& t, const std::string& table, const std::string& key,
+                     bool optional) {
+        if ((optional && field.empty()) || std::find(columns.begin(), columns.end(), field) != columns.end()) return;
+        const toml::node* n = t.get(key);
+        const std::string hint = didYouMean(field, columns);
+        throw InputError(line(e.path, n ? *n : static_cast<const toml::node&>(t)) + ": " + table + "." + key + ": '" +
+                         field + "' is not a row field" + (hint.empty() ? "" : ", did you mean '" + hint + "'?") +
+                         " (allowed: the columns of results.csv: " + join(columns) + ")");
+    };
+    const auto plots = tables(doc, e.path, "plot");
+    for (size_t i = 0; i < plots.size(); ++i) {
+        check(e.plots[i].x, *plots[i], "plot", "x", false);
+        check(e.plots[i].y, *plots[i], "plot", "y", false);
+        check(e.plots[i].series, *plots[i], "plot", "series", true);
+    }
+    const auto pareto = tables(doc, e.path, "pareto");
+    for (size_t i = 0; i < pareto.size(); ++i) {
+        check(e.pareto[i].setting, *pareto[i], "pareto", "setting", false);
+        check(e.pareto[i].series, *pareto[i], "pareto", "series", false);
+        check(e.pareto[i].error, *pareto[i], "pareto", "error", false);
+        check(e.pareto[i].time, *pareto[i], "pareto", "time", false);
+    }
+    if (const auto* s = table(doc, e.path, "summary")) {
+        check(e.summarySeries, *s, "summary", "series", true);
+        check(e.summaryX, *s, "summary", "x", false);
     }
 }
 
@@ -294,25 +546,34 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
                          std::string(err.description()));
     }
     checkTables(doc, path);
-    const std::string stem = path.substr(path.rfind('/') + 1);
-    e.name = doc["experiment"]["name"].value_or(stem.substr(0, stem.rfind('.')));
-    e.title = doc["experiment"]["title"].value_or(e.name);
-    e.description = doc["experiment"]["description"].value_or(std::string());
-    if (const auto* scene = doc["scene"].as_table()) e.base = scene::sceneValues(*scene, path);
-    if (const auto* match = doc["match"].as_table()) {
+    const std::string file = path.substr(path.rfind('/') + 1);
+    const std::string stem = file.substr(0, file.rfind('.'));
+    if (const auto* exp = table(doc, path, "experiment")) {
+        const Fields f(*exp, path, "experiment", {"name", "title", "description"});
+        e.name = f.string("name", stem);
+        const std::string why = outputNameError(e.name, "");
+        if (!why.empty())
+            f.fail("name", "'" + printable(e.name) + "': " + why + " (the name of its folder under results/)");
+        e.title = f.string("title", e.name);
+        e.description = f.string("description", "");
+    } else {
+        e.name = e.title = stem;
+        if (!outputNameError(e.name, "").empty())
+            throw InputError(path + ": experiment.name: the file's name gives no folder name; give [experiment] name = \"...\"");
+    }
+    if (const auto* scene = table(doc, path, "scene")) e.base = scene::sceneValues(*scene, path);
+    if (const auto* match = table(doc, path, "match")) {
         e.match = scene::sceneValues(*match, path);
         e.matching = !e.match.given().empty();
     }
-    if (const auto* sweeps = doc["sweep"].as_array())
-        for (const auto& s : *sweeps) {
-            if (!s.is_table()) throw InputError(line(path, s) + ": [[sweep]] entries are tables");
-            e.axes.push_back(parseAxis(*s.as_table(), path));
-        }
-    parsePlots(doc, path, e);
-    parseSheet(doc, path, e);
-    parseStrips(doc, path, e);
+    for (const auto* s : tables(doc, path, "sweep")) e.axes.push_back(parseAxis(*s, path));
+    Names names;
+    parsePlots(doc, path, e, names);
+    parseSheet(doc, path, e, names);
+    parseStrips(doc, path, e, names);
     parseSummary(doc, path, e);
-    parseErrorTables(doc, path, e);
+    parseErrorTables(doc, path, e, names);
+    checkFields(e, doc);
     return e;
 }
 
@@ -350,7 +611,8 @@ std::vector<Configuration> Experiment::configurations() const {
     for (const auto& c : configs) {
         scene::Values all = c.values;
         all.merge(c.reference);
-        scene::resolve(all);
+        if (scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
+            throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
     }
     return configs;
 }

@@ -69,6 +69,10 @@ struct Experiment {
     std::vector<Configuration> configurations() const;
 };
 
+/// The columns of the experiment's rows: config, the case axes and their tags, every registry column, every
+/// measurement field, then the [reference] and [timing] columns (what plots, the summary and [[pareto]] may read).
+std::vector<std::string> rowColumns(const Experiment& e);
+
 /// A path, or the name of a file shipped in experiments/ (found beside the executable like the shaders).
 std::string findExperiment(const std::string& nameOrPath);
 Experiment loadExperiment(const std::string& path);

@@ -15,6 +15,13 @@ namespace {
 
 std::string text(const nlohmann::json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
+/// A data file's comment: control characters (a newline would start a data line) become spaces.
+std::string oneLine(std::string s) {
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+    return s;
+}
+
 double number(const nlohmann::json& row, const std::string& key) {
     return row.contains(key) && row[key].is_number() ? row[key].get<double>() : NAN;
 }
@@ -80,7 +87,7 @@ bool plotPareto(const std::string& dir, const ParetoSpec& spec, const std::vecto
         front << std::setprecision(10) << p->time << " " << std::max(p->error, floor) << " "
               << nlohmann::json(p->setting).dump() << "\n";
     std::string data;
-    for (const auto& k : order) data += "# " + k + "\n" + blocks[k].str() + "\n\n";
+    for (const auto& k : order) data += "# " + oneLine(k) + "\n" + blocks[k].str() + "\n\n";
     data += "# Pareto front\n" + front.str() + "\n\n";
     const std::string base = spec.file.substr(0, spec.file.rfind('.'));
     const std::string dat = dir + "/" + base + ".dat";
@@ -88,20 +95,20 @@ bool plotPareto(const std::string& dir, const ParetoSpec& spec, const std::vecto
 
     std::ostringstream gp;
     gp << "set terminal pngcairo size 1000,700 font 'DejaVu Sans,10'\n"
-       << "set output " << quoteShell(dir + "/" + spec.file + ".tmp") << "\n"
-       << "set title " << nlohmann::json(spec.title).dump() << "\n"
-       << "set xlabel " << nlohmann::json(spec.time + " (mean over the scenes; log)").dump() << "\n"
-       << "set ylabel " << nlohmann::json(spec.error + " (worst over the scenes; log)").dump() << "\n"
+       << "set output " << quoteGnuplot(dir + "/" + spec.file + ".tmp") << "\n"
+       << "set title " << quoteGnuplot(spec.title) << "\n"
+       << "set xlabel " << quoteGnuplot(spec.time + " (mean over the scenes; log)") << "\n"
+       << "set ylabel " << quoteGnuplot(spec.error + " (worst over the scenes; log)") << "\n"
        << "set termoption noenhanced\n"  // keeps the underscores of column names
        << "set logscale xy\nset format y '1e%L'\nset grid\nset key outside right top box opaque\n";
     for (double t : spec.targets) gp << "set arrow from graph 0, first " << t << " to graph 1, first " << t << " nohead dt 3 lc rgb 'gray40'\n";
-    gp << "plot " << quoteShell(dat) << " index " << order.size()
+    gp << "plot " << quoteGnuplot(dat) << " index " << order.size()
        << " using 1:2 with steps lw 3 lc rgb '#80000000' title 'Pareto front'";
     for (size_t i = 0; i < order.size(); ++i)
-        gp << ", " << quoteShell(dat) << " index " << i << " using 1:2 with points pt " << (5 + 2 * int(i % 4))
-           << " ps 1.4 title " << nlohmann::json(order[i].empty() ? "settings" : order[i]).dump();
-    gp << ", " << quoteShell(dat) << " index " << order.size()
-       << " using 1:2 with points pt 6 ps 2.6 lw 2 lc rgb 'black' title 'on the front', " << quoteShell(dat)
+        gp << ", " << quoteGnuplot(dat) << " index " << i << " using 1:2 with points pt " << (5 + 2 * int(i % 4))
+           << " ps 1.4 title " << quoteGnuplot(order[i].empty() ? "settings" : order[i]);
+    gp << ", " << quoteGnuplot(dat) << " index " << order.size()
+       << " using 1:2 with points pt 6 ps 2.6 lw 2 lc rgb 'black' title 'on the front', " << quoteGnuplot(dat)
        << " index " << order.size() << " using 1:2:3 with labels left offset 1.2,0.6 font ',8' notitle\n";
     return runGnuplot(dir, spec.file, gp.str(), why);
 }

@@ -2,8 +2,13 @@
 
 #include "io/image_io.hpp"
 
+#include <muParser.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iomanip>
 #include <map>
 #include <sstream>
 
@@ -15,53 +20,176 @@ std::string quoteShell(const std::string& s) {
     return q + "'";
 }
 
+std::string quoteGnuplot(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) {
+        if (c == '\'') q += "''";
+        else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) q += ' ';
+        else q += c;
+    }
+    return q + "'";
+}
+
+const std::vector<std::string>& plotKeys() {
+    static const std::vector<std::string> keys = {
+        "top left", "top center", "top right", "center left", "center", "center right", "bottom left",
+        "bottom center", "bottom right", "outside right top", "outside right center", "outside right bottom",
+        "below", "above", "off"};
+    return keys;
+}
+
+namespace {
+
+/// A parser for `expr` reading the variable at `x`.
+void setUp(mu::Parser& p, const std::string& expr, double* x) {
+    p.DefineVar("x", x);
+    p.DefineConst("pi", M_PI);
+    p.SetExpr(expr);
+}
+
+}  // namespace
+
+std::string theoryError(const std::string& expr) {
+    // muparser's `=` assigns to a variable and `,` gives several results: neither is a curve.
+    for (size_t i = 0; i < expr.size(); ++i)
+        if (expr[i] == '=' && !(i > 0 && std::string("=<>!").find(expr[i - 1]) != std::string::npos) &&
+            !(i + 1 < expr.size() && expr[i + 1] == '='))
+            return "an assignment is not a curve (write an expression of x, e.g. cos(x*pi/180))";
+    try {
+        mu::Parser p;
+        double x = 1;
+        setUp(p, expr, &x);
+        p.Eval();  // parses, and finds unknown names
+        if (p.GetNumResults() != 1) return "one expression, not a list";
+    } catch (const mu::Parser::exception_type& e) {
+        return e.GetMsg();
+    }
+    return "";
+}
+
+std::vector<double> theoryValues(const std::string& expr, const std::vector<double>& xs) {
+    std::vector<double> out;
+    mu::Parser p;
+    double x = 0;
+    setUp(p, expr, &x);
+    for (double v : xs) {
+        x = v;
+        double y = NAN;
+        try {
+            y = p.Eval();
+        } catch (const mu::Parser::exception_type&) {
+        }
+        out.push_back(std::isfinite(y) ? y : NAN);
+    }
+    return out;
+}
+
+std::string outputNameError(const std::string& name, const std::string& extension) {
+    if (name.empty()) return "empty";
+    if (name.size() > 200) return "longer than 200 bytes";
+    if (name.find('/') != std::string::npos) return "a name in the output folder, not a path (no '/')";
+    if (name.front() == '.') return "starts with '.' (no hidden files, no '..')";
+    if (name.front() == '-') return "starts with '-'";
+    for (char c : name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "holds a control character";
+    if (!extension.empty() &&
+        (name.size() <= extension.size() || name.compare(name.size() - extension.size(), extension.size(), extension) != 0))
+        return "must end in " + extension;
+    return "";
+}
+
 namespace {
 
 std::string label(const nlohmann::json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
+/// A data file's comment line: one line whatever the text holds.
+std::string comment(const std::string& s) {
+    std::string c = "# ";
+    for (char ch : s) c += static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f ? ' ' : ch;
+    return c + "\n";
+}
+
+/// Where the theory curves are evaluated: the rows' x values and 200 steps between their extremes (evenly
+/// spaced, or geometrically on a log axis), so a curve is as smooth as gnuplot's own sampling made it.
+std::vector<double> theorySamples(const std::vector<double>& data, bool logx) {
+    std::vector<double> xs;
+    for (double v : data)
+        if (std::isfinite(v) && (!logx || v > 0)) xs.push_back(v);
+    if (xs.empty()) return xs;
+    const auto [lo, hi] = std::minmax_element(xs.begin(), xs.end());
+    const double a = *lo, b = *hi;
+    const int steps = 200;
+    for (int i = 0; i <= steps; ++i) {
+        const double t = double(i) / steps;
+        xs.push_back(logx ? a * std::pow(b / a, t) : a + (b - a) * t);
+    }
+    std::sort(xs.begin(), xs.end());
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    return xs;
+}
+
 }  // namespace
 
 bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohmann::json>& rows, std::string& why) {
-    // One data block per series, in first-seen order, for gnuplot's "index".
+    // One data block per series, in first-seen order, for gnuplot's "index"; then one per theory curve.
     std::vector<std::string> order;
     std::map<std::string, std::ostringstream> blocks;
+    std::vector<double> xs;
     for (const auto& r : rows) {
         if (!r.contains(spec.x) || !r.contains(spec.y) || r[spec.y].is_null()) continue;
         const std::string key = spec.series.empty() ? spec.y : label(r[spec.series]);
         if (!blocks.count(key)) order.push_back(key);
         blocks[key] << r[spec.x].dump() << " " << r[spec.y].dump() << "\n";
+        if (r[spec.x].is_number()) xs.push_back(r[spec.x].get<double>());
     }
     std::string data;
-    for (const auto& k : order) data += "# " + k + "\n" + blocks[k].str() + "\n\n";
+    for (const auto& k : order) data += comment(k) + blocks[k].str() + "\n\n";
+    const std::vector<double> samples = theorySamples(xs, spec.logx);
+    for (const auto& [title, expr] : spec.theory) {
+        std::ostringstream block;
+        block << std::setprecision(17);
+        const auto ys = theoryValues(expr, samples);
+        for (size_t i = 0; i < samples.size(); ++i)
+            if (std::isfinite(ys[i])) block << samples[i] << " " << ys[i] << "\n";
+            else block << "\n";  // undefined there: a gap in the line, never a NaN in the file
+        data += comment("theory: " + title) + block.str() + "\n\n";
+    }
     const std::string base = spec.file.substr(0, spec.file.rfind('.'));
-    io::writeFileAtomic(dir + "/" + base + ".dat", data);
+    const std::string dat = dir + "/" + base + ".dat";
+    io::writeFileAtomic(dat, data);
 
     std::ostringstream gp;
     gp << "set terminal pngcairo size 900,600 noenhanced font 'DejaVu Sans,11'\n"
-       << "set output " << quoteShell(dir + "/" + spec.file + ".tmp") << "\n"
-       << "set title " << nlohmann::json(spec.title).dump() << "\n"
-       << "set xlabel " << nlohmann::json(spec.xlabel.empty() ? spec.x : spec.xlabel).dump() << "\n"
-       << "set ylabel " << nlohmann::json(spec.ylabel.empty() ? spec.y : spec.ylabel).dump() << "\n"
-       << "set key " << spec.key << " box opaque\nset grid\n"
+       << "set output " << quoteGnuplot(dir + "/" + spec.file + ".tmp") << "\n"
+       << "set title " << quoteGnuplot(spec.title) << "\n"
+       << "set xlabel " << quoteGnuplot(spec.xlabel.empty() ? spec.x : spec.xlabel) << "\n"
+       << "set ylabel " << quoteGnuplot(spec.ylabel.empty() ? spec.y : spec.ylabel) << "\n";
+    // The key is one of a fixed set (checked when the file is read); anything else keeps the default.
+    const auto& keys = plotKeys();
+    const std::string key = std::find(keys.begin(), keys.end(), spec.key) != keys.end() ? spec.key : "bottom left";
+    gp << (key == "off" ? std::string("set key off\n") : "set key " + key + " box opaque\n") << "set grid\n"
        << (spec.logx ? "set logscale x\n" : "") << (spec.logy ? "set logscale y\n" : "");
     gp << "plot ";
     bool first = true;
     for (size_t i = 0; i < order.size(); ++i) {
-        gp << (first ? "" : ", ") << quoteShell(dir + "/" + base + ".dat") << " index " << i
-           << " using 1:2 with linespoints pt 7 ps 0.5 title " << nlohmann::json(order[i]).dump();
+        gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << i
+           << " using 1:2 with linespoints pt 7 ps 0.5 title " << quoteGnuplot(order[i]);
         first = false;
     }
-    for (const auto& [title, expr] : spec.theory) {
-        gp << (first ? "" : ", ") << expr << " with lines dt 2 lw 2 title " << nlohmann::json(title).dump();
+    for (size_t i = 0; i < spec.theory.size(); ++i) {
+        gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << order.size() + i
+           << " using 1:2 with lines dt 2 lw 2 title " << quoteGnuplot(spec.theory[i].first);
         first = false;
     }
+    if (first) gp << "NaN notitle";  // no rows with the fields: an empty frame, not a gnuplot syntax error
     gp << "\n";
     return runGnuplot(dir, spec.file, gp.str(), why);
 }
 
 bool runGnuplot(const std::string& dir, const std::string& file, const std::string& commands, std::string& why) {
     const std::string base = file.substr(0, file.rfind('.'));
-    const std::string script = dir + "/" + base + ".gp";
+    // "./" before a relative folder: a path starting with '-' is never read as a gnuplot option.
+    const std::string script = (dir.empty() || dir.front() != '/' ? "./" : "") + dir + "/" + base + ".gp";
     io::writeFileAtomic(script, commands);
     const std::string cmd = "gnuplot " + quoteShell(script) + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
