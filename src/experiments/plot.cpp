@@ -145,7 +145,10 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     std::string data;
     for (const auto& k : order) data += comment(k) + blocks[k].str() + "\n\n";
     const std::vector<double> samples = theorySamples(xs, spec.logx);
-    for (const auto& [title, expr] : spec.theory) {
+    // Rows without a numeric x give no samples: no curve (gnuplot would fail on an empty block).
+    const size_t curves = samples.empty() ? 0 : spec.theory.size();
+    for (size_t c = 0; c < curves; ++c) {
+        const auto& [title, expr] = spec.theory[c];
         std::ostringstream block;
         block << std::setprecision(17);
         const auto ys = theoryValues(expr, samples);
@@ -176,7 +179,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
            << " using 1:2 with linespoints pt 7 ps 0.5 title " << quoteGnuplot(order[i]);
         first = false;
     }
-    for (size_t i = 0; i < spec.theory.size(); ++i) {
+    for (size_t i = 0; i < curves; ++i) {
         gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << order.size() + i
            << " using 1:2 with lines dt 2 lw 2 title " << quoteGnuplot(spec.theory[i].first);
         first = false;
