@@ -210,7 +210,7 @@ std::vector<SweepCase> parseCases(const toml::array& cases, const std::string& f
         if (const auto* tags = (*t)["tags"].as_table())
             for (const auto& [k, v] : *tags) {
                 const std::string tag(k.str());
-                if (tag == "config" || tag == key)
+                if (tag == "config" || tag == key)  // the index column, or the axis's own column
                     throw InputError(line(file, v) + ": sweep.cases.tags." + tag + ": a tag cannot be named like the " +
                                      (tag == "config" ? "configuration index column" : "axis"));
                 sc.tags[tag] = scalar(v, line(file, v) + ": sweep.cases.tags." + tag);
@@ -266,8 +266,19 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
         addValues(axis, *f.array("values"), file);
         if (axis.entries.empty()) f.fail("values", "no values");
     } else {
+        // A case axis and its tags are row columns of their own: one named like a fixed column (config, a
+        // parameter, a measurement field) would overwrite it in the row (config: the index --resume reads).
+        std::vector<std::string> fixed = {"config"};
+        for (const auto& c : scene::columns()) fixed.push_back(c);
+        for (const auto& c : measurement::measurementColumns()) fixed.push_back(c);
+        auto isFixed = [&](const std::string& name) { return std::find(fixed.begin(), fixed.end(), name) != fixed.end(); };
+        if (isFixed(axis.key)) f.fail("key", "'" + axis.key + "' is a column of every row; name a case axis otherwise (e.g. setting)");
         axis.cases = parseCases(*f.array("cases"), file, axis.key);
         if (axis.cases.empty()) f.fail("cases", "no cases");
+        for (const auto& c : axis.cases)
+            for (const auto& [tag, v] : c.tags.items())
+                if (isFixed(tag))
+                    f.fail("cases", "case '" + c.name + "': tag '" + tag + "' is a column of every row; name it otherwise");
         for (const auto& c : axis.cases) axis.values.push_back(c.name);
     }
     return axis;

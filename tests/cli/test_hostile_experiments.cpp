@@ -139,6 +139,10 @@ const std::vector<Case>& cases() {
         {"case tag inf", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { k = inf } }] # <-\n"), "sweep.cases.tags.k"},
         {"case tag named config", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { config = 1 } }] # <-\n"), "sweep.cases.tags.config"},
         {"case reference table unknown", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", reference = { lights = 1 } }] # <-\n"), "sweep.cases.reference.lights"},
+        {"case axis named config", base("[[sweep]]\nkey = \"config\" # <-\ncases = [{ name = \"a\" }]\n"), "sweep.key"},
+        {"case axis named like a parameter", base("[[sweep]]\nkey = \"roughness\" # <-\ncases = [{ name = \"a\" }]\n"), "sweep.key"},
+        {"case tag named like a measurement", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { aspect = 1 } }] # <-\n"), "sweep.cases"},
+        {"case tag named like the axis", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { s = 1 } }] # <-\n"), "sweep.cases.tags.s"},
         {"case roughness a word", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", material = { roughness = \"x\" } }] # <-\n"), "material.roughness"},
         // -- [[plot]]
         {"plot fiel (did you mean file)", base("[[plot]]\nfiel = \"a.png\" # <-\n"), "plot.fiel"},
