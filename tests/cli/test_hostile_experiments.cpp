@@ -332,6 +332,31 @@ TEST_CASE("cli::run hostile experiment files: exit 2, one line naming file:line:
     }
 }
 
+// The errors that were found only after every row was measured (a contact-sheet value, a plot field, an
+// incidence list) against a real result set: a plain run and a --resume into it leave it as it was.
+TEST_CASE("cli::run late errors are found before a real previous result set is touched") {
+    hilite_test::TempDir d("hilite-hostile-real");
+    const std::string good = d.write("good.toml", base("[[plot]]\nfile = \"aspect.png\"\n"));
+    REQUIRE(hilite_test::hilite("run " + good + " -o " + (d / "out")).code == 0);
+    REQUIRE(fs::exists(d / "out/results.jsonl"));
+    for (const char* late : {"[contact_sheet]\nrows = [\"gggx\"]\ncolumns = [0]\n", "[[plot]]\nfile = \"b.png\"\ny = \"aspekt\"\n",
+                             "[contact_sheet]\nsize = \"0\"\nrows = [\"ggx\"]\ncolumns = [0]\n",
+                             "[scene.light]\nincidence = \"0:30:10\"\n[[sweep]]\nkey = \"material.model\"\nvalues = [\"ggx\"]\n"}) {
+        CAPTURE(late);
+        const std::string text = std::string(late).find("[scene.light]") == 0 ? kNoSweep + late : base(late);
+        const std::string bad = d.write("bad.toml", text);
+        const auto before = snapshot(d.path);
+        for (const char* resume : {"", " --resume"}) {
+            const auto r = hilite_test::hilite("run " + bad + " -o " + (d / "out") + resume);
+            CAPTURE(r.out);
+            CHECK(r.code == 2);
+            CHECK(hilite_test::lines(r.out) == 1);
+            CHECK(r.out.rfind("hilite: " + bad + ":", 0) == 0);
+            CHECK(snapshot(d.path) == before);
+        }
+    }
+}
+
 TEST_CASE("cli::run unknown keys name the closest allowed one and list them all") {
     hilite_test::TempDir d("hilite-hostile-hint");
     const auto r = hilite_test::hilite("run " + d.write("e.toml", base("[[plot]]\nfiel = \"a.png\"\n")) + " -o " + (d / "o"));
