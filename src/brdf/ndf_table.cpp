@@ -3,6 +3,7 @@
 #include "core/csv.hpp"
 
 #include "core/error.hpp"
+#include "core/files.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -104,11 +105,7 @@ std::shared_ptr<const NdfTable> parseNdfTable(const std::string& text, const std
 }
 
 std::shared_ptr<const NdfTable> loadNdfTable(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot read the NDF table (--ndf-table)");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parseNdfTable(ss.str(), path);
+    return parseNdfTable(readInputFile(path, "--ndf-table"), path);
 }
 
 double D_Tabulated(double NoH, double sin2h, const NdfTable& t) {

@@ -1,6 +1,7 @@
 #include "brdf_file/brdf_file.hpp"
 
 #include "core/error.hpp"
+#include "core/files.hpp"
 #include "core/text.hpp"
 
 #include <algorithm>
@@ -269,12 +270,7 @@ BrdfFile parse(const std::string& text, const std::string& path) {
 }
 
 BrdfFile load(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError("--brdf: cannot read '" + path + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw InputError("--brdf: cannot read '" + path + "'");
-    return parse(ss.str(), path);
+    return parse(readInputFile(path, "--brdf"), path);
 }
 
 void assign(BrdfFile& file, const std::string& assignments) {

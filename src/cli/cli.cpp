@@ -4,10 +4,28 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <map>
 
 namespace hilite::cli {
+
+namespace {
+
+/// Exit code `code`, or 3 when what was printed did not all reach stdout (a full disk, /dev/full, a closed
+/// pipe): a result that was not delivered is not a success.
+int finishStdout(int code) {
+    errno = 0;
+    std::cout.flush();
+    const bool flushed = std::fflush(stdout) == 0;
+    if (flushed && std::cout.good() && !std::ferror(stdout)) return code;
+    std::cerr << "hilite: writing to stdout failed" << (errno ? std::string(": ") + std::strerror(errno) : "") << "\n";
+    return 3;
+}
+
+}  // namespace
 
 int run(int argc, char** argv) {
     CLI::App app{"hilite: the highlight analyzer. Renders a plane under a distant light offscreen (OpenGL via "
@@ -48,7 +66,7 @@ int run(int argc, char** argv) {
     }
     try {
         for (auto& [sub, action] : actions)
-            if (sub->parsed()) return action();
+            if (sub->parsed()) return finishStdout(action());
     } catch (const InputError& e) {
         std::cerr << "hilite: " << e.what() << "\n";
         return 2;

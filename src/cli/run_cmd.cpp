@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/results.hpp"
+#include "io/image_io.hpp"
 
 #include <unistd.h>
 
@@ -43,6 +44,14 @@ void parseShard(const std::string& s, int& k, int& n) {
     k = int(*a), n = int(*b);
 }
 
+/// The output folder can be made or written, and the result files in it are replaceable (regular files).
+void checkResultFolder(const std::string& dir) {
+    io::checkOutputDir(dir, "-o");
+    if (!fs::is_directory(dir)) return;
+    for (const char* name : {"results.jsonl", "results.csv", "experiment.toml", "experiment.origin", "summary.md"})
+        io::checkWritable(dir + "/" + name, "-o");
+}
+
 void progress(size_t done, size_t total, double seconds) {
     static const bool tty = isatty(fileno(stderr));
     if (!tty) return;
@@ -55,14 +64,16 @@ void progress(size_t done, size_t total, double seconds) {
 int runExperiment(const RunFlags& f) {
     int shardK = 1, shardN = 1;
     parseShard(f.shard, shardK, shardN);
+    if (f.experiment.empty()) throw InputError("run: empty experiment name (give a file, or a name in experiments/)");
     const Experiment exp = experiments::loadExperiment(experiments::findExperiment(f.experiment));
     const std::string dir = f.out.empty() ? "results/" + exp.name : f.out;
     const auto configs = exp.configurations();  // validates every configuration before anything runs
     ExperimentRunner runner(exp, f.backend);
     runner.probeAll(configs, shardK, shardN);  // a .brdf that does not build or runs too long: nothing written
-    fs::create_directories(dir);  // only now: bad input leaves not even an empty folder behind
-    if (access(dir.c_str(), W_OK) != 0) throw InputError("-o: cannot write to '" + dir + "'");
-    experiments::ResultsWriter writer(dir, runner.columns(), f.resume);
+    checkResultFolder(dir);
+    io::makeOutputDir(dir, "-o");  // only now: bad input leaves not even an empty folder behind
+    const io::FolderLock lock(dir, "-o");  // a second run or merge into this folder is refused, not mixed in
+    experiments::ResultsWriter writer(dir, runner.columns(), f.resume, exp, configs);
     experiments::writeExperimentCopy(exp, dir);
     size_t todo = 0;
     for (const auto& c : configs) todo += (c.index % shardN == shardK - 1 && !writer.done().count(c.index));
@@ -74,6 +85,7 @@ int runExperiment(const RunFlags& f) {
         progress(++finished, todo,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
+    writer.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (shardN > 1) {
         std::cout << "shard " << shardK << "/" << shardN << ": " << finished << " rows in " << seconds << " s -> "
@@ -91,26 +103,46 @@ struct MergeFlags {
     std::string out, backend;
 };
 
+/// Refuses shards whose experiments differ in what any configuration measures (before anything is written).
+void checkSameExperiment(const std::string& first, const Experiment& a, const std::vector<experiments::Configuration>& ca,
+                         const std::string& other) {
+    const Experiment b = experiments::loadExperimentCopy(other);
+    if (b.text == a.text) return;
+    const auto cb = b.configurations();
+    const std::string why = "merge: '" + other + "' and '" + first + "' are shards of different experiments";
+    if (ca.size() != cb.size())
+        throw InputError(why + " (" + std::to_string(cb.size()) + " and " + std::to_string(ca.size()) + " configurations)");
+    for (size_t i = 0; i < ca.size(); ++i)
+        if (experiments::fingerprint(b, cb[i]) != experiments::fingerprint(a, ca[i]))
+            throw InputError(why + " (configuration " + std::to_string(ca[i].index) + " differs)");
+}
+
 int runMerge(const MergeFlags& f) {
     if (f.out.empty()) throw InputError("-o: merge needs an output folder");
-    std::vector<nlohmann::json> rows;
-    std::string experimentFile;
     for (const auto& s : f.shards) {
         const std::string copy = s + "/experiment.toml";
         if (!fs::exists(copy)) throw InputError("merge: '" + s + "' holds no experiment.toml (not a hilite run output)");
-        if (experimentFile.empty()) experimentFile = copy;
-        for (auto& r : experiments::readRows(s + "/results.jsonl")) rows.push_back(std::move(r));
     }
-    const Experiment exp = experiments::loadExperimentCopy(experimentFile.substr(0, experimentFile.rfind('/')));
+    const Experiment exp = experiments::loadExperimentCopy(f.shards.front());
+    const auto configs = exp.configurations();
+    std::vector<nlohmann::json> rows;
+    for (const auto& s : f.shards) {
+        if (s != f.shards.front()) checkSameExperiment(f.shards.front(), exp, configs, s);
+        auto shardRows = experiments::readRows(s + "/results.jsonl");
+        experiments::checkRows(shardRows, s + "/results.jsonl", exp, configs);
+        for (auto& r : shardRows) rows.push_back(std::move(r));
+    }
     std::set<long> seen;
     for (const auto& r : rows)
         if (!seen.insert(r["config"].get<long>()).second)
             throw InputError("merge: configuration " + r["config"].dump() + " appears in more than one shard");
     ExperimentRunner runner(exp, f.backend);  // checks the backend and [match] before anything is written
-    fs::create_directories(f.out);
+    checkResultFolder(f.out);
+    io::makeOutputDir(f.out, "-o");
+    const io::FolderLock lock(f.out, "-o");
     experiments::ResultsWriter::writeAll(f.out, runner.columns(), rows);
     experiments::writeExperimentCopy(exp, f.out);
-    const size_t expected = exp.configurations().size();
+    const size_t expected = configs.size();
     runner.finalize(f.out, experiments::readRows(f.out + "/results.jsonl"), -1);
     std::cout << "merged " << rows.size() << " of " << expected << " rows from " << f.shards.size() << " shards -> "
               << f.out << "\n";

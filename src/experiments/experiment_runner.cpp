@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/reports.hpp"
+#include "experiments/results.hpp"
 #include "measurement/row.hpp"
 
 #include <algorithm>
@@ -125,6 +126,7 @@ const measure::Shape& ExperimentRunner::reference(const Configuration& c, scene:
 nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     nlohmann::json row;
     row["config"] = c.index;
+    row["fingerprint"] = fingerprint(m_exp, c);  // what --resume and merge check the row against
     for (const auto& [k, v] : c.tags.items()) row[k] = v;
     scene::Values values = c.values;
     applyMatch(values, row);

@@ -1,35 +1,65 @@
 #pragma once
 // Result files of an experiment, streamed row by row so a killed run keeps every completed row:
 // results.jsonl (one JSON object per configuration) and results.csv (the same rows, fixed columns).
-// Each row is appended whole and flushed; a partial last line (a kill mid-write) is dropped on resume.
+// Each row is appended whole and fsync'd before the next is measured; a partial last line (a kill or a full
+// disk mid-write) is dropped on resume. Each JSON row carries the fingerprint of the configuration it
+// measured, so --resume and merge never keep a row of another (or an edited) experiment.
+
+#include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <cstdio>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 namespace hilite::experiments {
 
-/// Reads the complete rows of a results.jsonl (a torn last line is ignored). Missing file: empty.
+struct Configuration;
+struct Experiment;
+
+/// Reads the complete rows of a results.jsonl, streamed (no size cap). A torn last line (no newline: a kill
+/// mid-write) is dropped; any other line that is not a JSON object with an integer "config" >= 0 is refused
+/// (InputError "<path>:<line>: ..."). Missing file: empty. A path that is not a regular file: refused.
 std::vector<nlohmann::json> readRows(const std::string& jsonlPath);
+
+/// The rows of `text` as readRows reads a file (`name` stands for the file in messages): what the fuzzer drives.
+std::vector<nlohmann::json> parseRows(const std::string& text, const std::string& name);
 
 /// CSV text of one value: numbers as %.10g, strings quoted when needed, arrays joined with ';'.
 std::string csvField(const nlohmann::json& v);
+
+/// The fingerprint of what configuration `c` of `e` measures (16 hex digits, FNV-1a 64 of a canonical text:
+/// every scene value the configuration sets, data-file paths made absolute, its case's reference keys and
+/// tags, and the experiment's [timing], [reference] and [match] settings; not the file's text, comments or
+/// the order of its keys).
+std::string fingerprint(const Experiment& e, const Configuration& c);
+
+/// Checks that every row of `rows` (read from `file`) was measured by the configuration of `configs` it
+/// names, by fingerprint. Throws InputError naming file:line, the configuration and, where a row column
+/// shows it, the value that differs ("... was measured with roughness = 0.1, the experiment now says 0.2").
+void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file, const Experiment& e,
+               const std::vector<Configuration>& configs);
 
 class ResultsWriter {
 public:
     /// Opens dir/results.{jsonl,csv}. With `resume`, keeps the complete rows already there (rewriting
     /// both files from them, by rename) and reports their configs in done(); otherwise starts empty.
-    ResultsWriter(const std::string& dir, const std::vector<std::string>& columns, bool resume);
-    ~ResultsWriter();
+    /// Kept rows must pass checkRows against `configs`.
+    ResultsWriter(const std::string& dir, const std::vector<std::string>& columns, bool resume, const Experiment& e,
+                  const std::vector<Configuration>& configs);
     ResultsWriter(const ResultsWriter&) = delete;
     ResultsWriter& operator=(const ResultsWriter&) = delete;
 
     const std::set<long>& done() const { return m_done; }
-    /// Appends one row to both files and flushes them.
+    /// Appends one row to both files, each written whole (results.jsonl fsync'd) (SystemError on failure: the rows
+    /// appended before stay intact, and --resume measures the rest).
     void append(const nlohmann::json& row);
+
+    /// fsync's results.csv (each row of results.jsonl is fsync'd as it is appended; the CSV, which --resume
+    /// rebuilds from it, once here). Call before the run reports success.
+    void finish();
 
     /// Writes rows (sorted by "config") to dir/results.{jsonl,csv} atomically: what `merge` produces.
     static void writeAll(const std::string& dir, const std::vector<std::string>& columns,
@@ -37,9 +67,9 @@ public:
 
 private:
     std::vector<std::string> m_columns;
-    std::FILE* m_jsonl = nullptr;
-    std::FILE* m_csv = nullptr;
+    std::unique_ptr<io::DurableAppender> m_jsonl, m_csv;
     std::set<long> m_done;
+    std::string m_dir;
 };
 
 }  // namespace hilite::experiments

@@ -6,6 +6,9 @@
 #define STBI_WRITE_NO_STDIO
 #include <stb/stb_image_write.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 namespace hilite::io {
 
@@ -35,27 +39,156 @@ void appendBytes(void* context, void* data, int size) {
 
 }  // namespace
 
+namespace {
+
+std::string kindOf(mode_t m) {
+    if (S_ISREG(m)) return "a regular file";
+    if (S_ISDIR(m)) return "a directory";
+    if (S_ISLNK(m)) return "a symlink (not followed: name the file itself)";
+    if (S_ISFIFO(m)) return "a FIFO";
+    if (S_ISCHR(m)) return "a character device";
+    if (S_ISBLK(m)) return "a block device";
+    if (S_ISSOCK(m)) return "a socket";
+    return "not a regular file";
+}
+
+std::string errnoText() { return std::strerror(errno); }
+
+/// Refuses an existing `path` that is anything but a regular file (lstat: a symlink is refused, not followed).
+void requireReplaceable(const std::string& path, const std::string& flag) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) return;  // absent: created
+    if (!S_ISREG(st.st_mode))
+        throw InputError(flag + ": '" + path + "' is " + kindOf(st.st_mode) + "; an output replaces only a regular file");
+}
+
+void writeAll(int fd, const std::string& bytes, const std::string& path) {
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) throw SystemError("cannot write '" + path + "': " + (n < 0 ? errnoText() : "short write"));
+        done += size_t(n);
+    }
+}
+
+void syncDir(const std::string& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);  // the rename itself durable; a filesystem that cannot sync a folder (EINVAL) loses nothing here
+    ::close(fd);
+}
+
+}  // namespace
+
 void checkWritable(const std::string& path, const std::string& flag) {
     if (path.empty()) throw InputError(flag + ": empty output path");
-    if (!path.empty() && path.back() == '/') throw InputError(flag + ": '" + path + "' is a directory, not a file");
+    if (path.back() == '/') throw InputError(flag + ": '" + path + "' is a directory, not a file");
     const std::string dir = directoryOf(path);
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0)
+        throw InputError(flag + ": cannot write '" + path + "' (" + dir + ": " + errnoText() + ")");
+    if (!S_ISDIR(st.st_mode)) throw InputError(flag + ": cannot write '" + path + "' (" + dir + " is not a folder)");
     if (access(dir.c_str(), W_OK) != 0)
-        throw InputError(flag + ": cannot write '" + path + "' (" + dir + ": " + std::strerror(errno) + ")");
+        throw InputError(flag + ": cannot write '" + path + "' (" + dir + ": " + errnoText() + ")");
+    requireReplaceable(path, flag);
     if (access(path.c_str(), F_OK) == 0 && access(path.c_str(), W_OK) != 0)
-        throw InputError(flag + ": cannot write '" + path + "' (" + std::strerror(errno) + ")");
+        throw InputError(flag + ": cannot write '" + path + "' (" + errnoText() + ")");
+}
+
+void checkOutputDir(const std::string& dir, const std::string& flag) {
+    if (dir.empty()) throw InputError(flag + ": empty output folder name");
+    // The deepest part of `dir` that exists must be a writable folder; everything below it is made.
+    std::string existing = dir;
+    while (!existing.empty() && existing.back() == '/' && existing.size() > 1) existing.pop_back();
+    struct stat st {};
+    for (;;) {
+        if (::stat(existing.c_str(), &st) == 0) break;
+        if (errno != ENOENT && errno != ENOTDIR) throw InputError(flag + ": cannot use '" + dir + "' (" + existing + ": " + errnoText() + ")");
+        const auto slash = existing.rfind('/');
+        existing = slash == std::string::npos ? "." : slash == 0 ? "/" : existing.substr(0, slash);
+    }
+    if (!S_ISDIR(st.st_mode))
+        throw InputError(flag + ": '" + existing + "' is " + kindOf(st.st_mode) + ", not a folder" +
+                         (existing == dir ? "" : " (needed for '" + dir + "')"));
+    if (access(existing.c_str(), W_OK) != 0)
+        throw InputError(flag + ": cannot write to '" + existing + "': " + errnoText());
+}
+
+void makeOutputDir(const std::string& dir, const std::string& flag) {
+    checkOutputDir(dir, flag);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InputError(flag + ": cannot make the folder '" + dir + "': " + ec.message());
 }
 
 void writeFileAtomic(const std::string& path, const std::string& bytes) {
+    requireReplaceable(path, "output");
     const std::string tmp = path + ".tmp" + std::to_string(getpid());
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw InputError("cannot write '" + path + "': " + std::strerror(errno));
-    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    const bool closed = std::fclose(f) == 0;
-    if (!ok || !closed || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const std::string why = std::strerror(errno);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd < 0) throw SystemError("cannot write '" + path + "': " + errnoText());
+    try {
+        writeAll(fd, bytes, path);
+        if (::fsync(fd) != 0) throw SystemError("cannot write '" + path + "': " + errnoText());
+    } catch (...) {
+        ::close(fd);
         std::remove(tmp.c_str());
-        throw InputError("cannot write '" + path + "': " + why);
+        throw;
     }
+    if (::close(fd) != 0 || std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const std::string why = errnoText();
+        std::remove(tmp.c_str());
+        throw SystemError("cannot write '" + path + "': " + why);
+    }
+    syncDir(directoryOf(path));
+}
+
+DurableAppender::DurableAppender(const std::string& path) : m_path(path) {
+    requireReplaceable(path, "output");
+    m_fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (m_fd < 0) throw SystemError("cannot append to '" + path + "': " + errnoText());
+}
+
+DurableAppender::~DurableAppender() {
+    if (m_fd >= 0) ::close(m_fd);
+}
+
+void DurableAppender::append(const std::string& bytes, bool sync) {
+    writeAll(m_fd, bytes, m_path);
+    if (sync) this->sync();
+}
+
+void DurableAppender::sync() {
+    if (::fsync(m_fd) != 0) throw SystemError("cannot write '" + m_path + "': " + errnoText());
+}
+
+FolderLock::FolderLock(const std::string& dir, const std::string& flag) {
+    const std::string path = dir + "/.hilite.lock";
+    m_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (m_fd < 0) throw InputError(flag + ": cannot lock '" + dir + "' (" + path + ": " + errnoText() + ")");
+    if (::flock(m_fd, LOCK_EX | LOCK_NB) != 0) {
+        const bool busy = errno == EWOULDBLOCK;
+        const std::string why = errnoText();
+        char pid[32] = {};
+        const ssize_t n = ::pread(m_fd, pid, sizeof pid - 1, 0);
+        ::close(m_fd);
+        m_fd = -1;
+        std::string holder = n > 0 ? std::string(pid, size_t(n)) : "";
+        while (!holder.empty() && (holder.back() == '\n' || holder.back() == ' ')) holder.pop_back();
+        if (busy)
+            throw InputError(flag + ": '" + dir + "' is being written by another hilite run or merge" +
+                             (holder.empty() ? "" : " (pid " + holder + ")") +
+                             "; wait for it to finish or choose another folder");
+        throw InputError(flag + ": cannot lock '" + dir + "': " + why);
+    }
+    const std::string me = std::to_string(getpid()) + "\n";
+    if (::ftruncate(m_fd, 0) == 0) {
+        [[maybe_unused]] const ssize_t n = ::pwrite(m_fd, me.data(), me.size(), 0);  // for the refusal's message only
+    }
+}
+
+FolderLock::~FolderLock() {
+    if (m_fd >= 0) ::close(m_fd);  // closing releases the flock
 }
 
 void writePng(const std::string& path, const ImageF& img, const Exposure& e) {

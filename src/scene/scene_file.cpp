@@ -1,6 +1,7 @@
 #include "scene/scene_file.hpp"
 
 #include "core/error.hpp"
+#include "core/files.hpp"
 #include "core/text.hpp"
 
 #include <algorithm>
@@ -114,13 +115,7 @@ Values parseSceneToml(const std::string& text, const std::string& name) {
     return sceneValues(doc, name);
 }
 
-std::string readTextFile(const std::string& path, const std::string& what) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(what + ": cannot read '" + path + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+std::string readTextFile(const std::string& path, const std::string& what) { return readInputFile(path, what); }
 
 Values loadSceneFile(const std::string& path) { return parseSceneToml(readTextFile(path, "--scene"), path); }
 

@@ -80,6 +80,6 @@ TEST_CASE("brdf::parseNdfTable bad tables: one line naming file:line") {
             CHECK(m.find('\n') == std::string::npos);
         }
     }
-    CHECK_THROWS_WITH_AS(brdf::loadNdfTable("/nonexistent/d.csv"), doctest::Contains("/nonexistent/d.csv: cannot read"),
+    CHECK_THROWS_WITH_AS(brdf::loadNdfTable("/nonexistent/d.csv"), doctest::Contains("--ndf-table: cannot read '/nonexistent/d.csv'"),
                          InputError);
 }
