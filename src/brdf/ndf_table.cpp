@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "core/files.hpp"
+#include "core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -88,8 +89,16 @@ std::shared_ptr<const NdfTable> parseNdfTable(const std::string& text, const std
     integral *= 2.0 * kPi;
     if (!(integral > 0))
         throw InputError(name + ":" + std::to_string(lastLine) + ": D is 0 everywhere (nothing to normalize)");
+    // D is normalized by 1/integral: both must be normal doubles, or the table turns into 0 or Inf.
+    if (!std::isfinite(integral) || !std::isnormal(1.0 / integral))
+        throw InputError(name + ":" + std::to_string(lastLine) + ": the integral of D (" + fmt(integral) +
+                         ") is out of double range to normalize; scale the D column towards 1");
     t->normalization = 1.0 / integral;
-    for (double d : raw) t->D.push_back(d * t->normalization);
+    for (double d : raw) {
+        t->D.push_back(d * t->normalization);
+        if (!std::isfinite(t->D.back()))
+            throw InputError(name + ": D x normalization overflows double; scale the D column towards 1");
+    }
     const double top = *std::max_element(t->D.begin(), t->D.end());
     const size_t peak = size_t(std::max_element(t->D.begin(), t->D.end()) - t->D.begin());
     t->halfWidth = t->theta.back();

@@ -72,6 +72,10 @@ std::vector<double> parseList(const std::string& flag, const std::string& text, 
 }
 
 std::string rowFormat(double v) {
+    // Never a printed nan/inf: the parameters took a term out of double range.
+    if (!std::isfinite(v))
+        throw InputError("brdf: the parameters give a non-finite value (" + std::string(std::isnan(v) ? "NaN" : "Inf") +
+                         "): a term is out of double range; no number printed for it");
     std::ostringstream s;
     s << std::setw(12) << std::setprecision(7) << v;
     return s.str();

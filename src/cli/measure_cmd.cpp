@@ -3,6 +3,7 @@
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
 #include "core/error.hpp"
+#include "experiments/results.hpp"
 #include "measurement/session.hpp"
 
 #include <nlohmann/json.hpp>
@@ -26,6 +27,14 @@ void printTableHeader() {
                 "minor", "orient", "cu", "cv", "fwhm_u", "fwhm_v", "flags");
 }
 
+/// printf text of `v`, or "-" in the same width when it is not a number.
+std::string cell(double v, const char* format, int width) {
+    char buf[48];
+    if (!std::isfinite(v)) std::snprintf(buf, sizeof buf, "%*s", width, "-");
+    else std::snprintf(buf, sizeof buf, format, width, v);
+    return buf;
+}
+
 void printTableRow(const nlohmann::json& j) {
     std::string flags;
     for (const auto& fl : j["flags"]) flags += (flags.empty() ? "" : ",") + fl.get<std::string>();
@@ -33,18 +42,17 @@ void printTableRow(const nlohmann::json& j) {
     // An angle: 4 decimals, or 3 significant digits below 1e-3 deg (near-mirror lobes would print 0.0000).
     auto deg = [&](const char* k, int width) {
         const double v = num(k);
-        char buf[32];
-        std::snprintf(buf, sizeof buf, v != 0 && std::abs(v) < 1e-3 ? "%*.2e" : "%*.4f", width, v);
-        return std::string(buf);
+        return cell(v, v != 0 && std::abs(v) < 1e-3 ? "%*.2e" : "%*.4f", width);
     };
     if (j.value("framed_about", std::string("mirror direction")) != "mirror direction") {
         char about[96];
         std::snprintf(about, sizeof about, "about the peak, %.4g deg from the mirror direction", num("peak_offset_deg"));
         flags += (flags.empty() ? "" : " ") + std::string("(") + about + ")";
     }
-    std::printf("%-9s %6.2f %8.5f %8.5f %s %s %7.2f %s %s %s %s  %s\n", j["model"].get<std::string>().c_str(),
-                num("incidence_deg"), num("aspect"), num("eccentricity"), deg("major_deg", 9).c_str(),
-                deg("minor_deg", 9).c_str(), num("orientation_deg"), deg("centroid_u_deg", 8).c_str(),
+    std::printf("%-9s %s %s %s %s %s %s %s %s %s %s  %s\n", j["model"].get<std::string>().c_str(),
+                cell(num("incidence_deg"), "%*.2f", 6).c_str(), cell(num("aspect"), "%*.5f", 8).c_str(),
+                cell(num("eccentricity"), "%*.5f", 8).c_str(), deg("major_deg", 9).c_str(),
+                deg("minor_deg", 9).c_str(), cell(num("orientation_deg"), "%*.2f", 7).c_str(), deg("centroid_u_deg", 8).c_str(),
                 deg("centroid_v_deg", 8).c_str(), deg("fwhm_u_deg", 8).c_str(), deg("fwhm_v_deg", 8).c_str(),
                 flags.c_str());
     if (j.contains("error_estimate") && j["error_estimate"].is_object()) {  // a .brdf: resolution convergence
@@ -73,7 +81,8 @@ int runMeasure(const MeasureFlags& f) {
     if (!f.json) printTableHeader();
     for (double angle : r.angles) {
         r.scene.light.incidenceDeg = angle;
-        const nlohmann::json j = session.measureOne(r);
+        nlohmann::json j = session.measureOne(r);
+        experiments::nameNonFinite(j);
         if (f.json) std::cout << j.dump() << "\n" << std::flush;
         else printTableRow(j);
         if (!f.json && j.contains("tolerance")) printToleranceLine(j);

@@ -153,6 +153,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
         row["repeats"] = repeats;
     }
     if (m_exp.referenceErrors) addErrors(row, reference(c, values));
+    nameNonFinite(row);
     return row;
 }
 

@@ -155,6 +155,18 @@ void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file,
     }
 }
 
+void nameNonFinite(nlohmann::json& row) {
+    std::string bad;
+    for (auto& [k, v] : row.items())
+        if (v.is_number_float() && !std::isfinite(v.get<double>())) {
+            bad += (bad.empty() ? "" : ",") + k;
+            v = nullptr;
+        }
+    if (bad.empty()) return;
+    if (!row.contains("flags") || !row["flags"].is_array()) row["flags"] = nlohmann::json::array();
+    row["flags"].push_back("non_finite:" + bad);
+}
+
 std::string csvField(const nlohmann::json& v) {
     if (v.is_null()) return "";
     if (v.is_number_float()) {

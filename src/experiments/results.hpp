@@ -27,6 +27,10 @@ std::vector<nlohmann::json> readRows(const std::string& jsonlPath);
 /// The rows of `text` as readRows reads a file (`name` stands for the file in messages): what the fuzzer drives.
 std::vector<nlohmann::json> parseRows(const std::string& text, const std::string& name);
 
+/// A measured number that is not finite is never printed as nan/inf: it becomes null in the row and a
+/// "non_finite:<fields>" flag names it (the measurement broke down there; the other flags may say why).
+void nameNonFinite(nlohmann::json& row);
+
 /// CSV text of one value: numbers as %.10g, strings quoted when needed, arrays joined with ';'.
 std::string csvField(const nlohmann::json& v);
 

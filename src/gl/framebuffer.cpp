@@ -6,10 +6,35 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace hilite::gl {
+
+namespace {
+
+/// Whether this GL completes an RGBA32F + depth framebuffer of w x h (allocated, checked, freed).
+bool completes(int w, int h) {
+    GLuint fbo = 0, rb[2] = {0, 0};
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(2, rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[0]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[1]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    const bool ok = glGetError() == GL_NO_ERROR && glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteRenderbuffers(2, rb);
+    glDeleteFramebuffers(1, &fbo);
+    while (glGetError() != GL_NO_ERROR) {}
+    return ok;
+}
+
+}  // namespace
 
 int Framebuffer::maxSize() {
     GLint rb = 0, tex = 0, vp[2] = {0, 0};
@@ -34,10 +59,26 @@ Framebuffer::Framebuffer(int width, int height) : m_width(width), m_height(heigh
     glBindRenderbuffer(GL_RENDERBUFFER, m_depth);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_depth);
-    HILITE_GL_CHECK_WHAT("creating the float framebuffer");
+    const GLenum error = glGetError();
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw SystemError("float framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+    if (error == GL_OUT_OF_MEMORY || (status != GL_FRAMEBUFFER_COMPLETE && (width > 4096 || height > 4096))) {
+        // The GL's size limits allow it, but it cannot allocate this much (llvmpipe caps one buffer's bytes:
+        // 12000x12000 RGBA32F failed, 8192x8192 worked, measured): find the largest square that completes.
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        int lo = 1, hi = std::max(width, height);
+        while (hi - lo > 1) {
+            const int mid = lo + (hi - lo) / 2;
+            (completes(mid, mid) ? lo : hi) = mid;
+        }
+        throw InputError("--size: " + std::to_string(width) + "x" + std::to_string(height) +
+                         " is more than this GL can allocate for its float framebuffer; the largest square that "
+                         "works here is " + std::to_string(lo) + "x" + std::to_string(lo));
+    }
+    if (error != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
+        char hex[64];
+        std::snprintf(hex, sizeof hex, "GL error 0x%04x, status 0x%04x", unsigned(error), unsigned(status));
+        throw SystemError(std::string("creating the float framebuffer: ") + hex);
+    }
 }
 
 Framebuffer::~Framebuffer() {

@@ -351,7 +351,9 @@ std::string check(const Param& p, const std::string& text) {
         }
         case Kind::Integer: {
             const auto v = parseNumber(text);
-            if (!v || !inRange(*v) || *v != std::floor(*v))
+            // Above 2^53 a double holds no odd number: the text itself must not exceed what was read.
+            const bool exact = !v || std::abs(*v) < 9007199254740992.0 || text == exactText(*v);
+            if (!v || !inRange(*v) || *v != std::floor(*v) || !exact)
                 err = "must be a whole number in " + p.allowed() + " (got '" + text + "')";
             break;
         }

@@ -82,7 +82,8 @@ std::vector<double> Reader::angles(const char* name) const {
         const double a = angle(parts[0]), b = angle(parts[1]);
         const auto step = parseNumber(parts[2]);
         if (!step) throw InputError(w + ": '" + parts[2] + "' is not a number");
-        if (!(*step > 0) || b < a) throw InputError(w + ": range needs START <= STOP and STEP > 0 (got '" + s + "')");
+        if (!(*step > 0) || !std::isfinite(*step) || b < a)
+            throw InputError(w + ": range needs START <= STOP and a finite STEP > 0 (got '" + s + "')");
         const double n = std::floor((b - a) / *step + 1e-9);
         if (!(n <= 100000)) throw InputError(w + ": more than 100000 angles in '" + s + "'");
         for (long i = 0; i <= long(n); ++i) out.push_back(a + double(i) * *step);
