@@ -75,8 +75,8 @@ int runRender(const RenderFlags& f) {
 Action addRender(CLI::App& app) {
     auto f = std::make_shared<RenderFlags>();
     addParamFlags(app, f->scene, [](const scene::Param& p) { return p.table != scene::Table::Measurement; });
-    app.add_option("-o,--output", f->png, "PNG output (sRGB-encoded)")->group("Output");
-    app.add_option("--float", f->pfm, "float dump (PFM, exact RGB radiance)")->group("Output");
+    app.add_option("-o,--output", f->png, "PNG output (sRGB-encoded)")->group("Output")->check(nonEmpty());
+    app.add_option("--float", f->pfm, "float dump (PFM, exact RGB radiance)")->group("Output")->check(nonEmpty());
     app.add_option("--exposure", f->exposure, "PNG exposure: auto (peak = white) or stops EV (radiance x 2^EV)")
         ->capture_default_str()
         ->group("Output");

@@ -155,7 +155,7 @@ Action addRun(CLI::App& app) {
     auto f = std::make_shared<RunFlags>();
     app.add_option("experiment", f->experiment, "experiment file, or the name of one shipped in experiments/")
         ->required();
-    app.add_option("-o,--output", f->out, "output folder (default results/<experiment name>)");
+    app.add_option("-o,--output", f->out, "output folder (default results/<experiment name>)")->check(nonEmpty());
     app.add_flag("--resume", f->resume, "keep the completed rows already in the output folder and run the rest");
     app.add_option("--shard", f->shard, "run only configurations i with i mod N = K-1 (K/N, 1-based)");
     app.add_option("--gl-backend", f->backend, "auto | osmesa | egl");
@@ -166,7 +166,7 @@ Action addRun(CLI::App& app) {
 Action addMerge(CLI::App& app) {
     auto f = std::make_shared<MergeFlags>();
     app.add_option("shards", f->shards, "output folders of hilite run --shard K/N")->required();
-    app.add_option("-o,--output", f->out, "folder for the merged results")->required();
+    app.add_option("-o,--output", f->out, "folder for the merged results")->required()->check(nonEmpty());
     app.add_option("--gl-backend", f->backend, "auto | osmesa | egl");
     app.footer("Example: hilite merge results/s1 results/s2 -o results/eccentricity");
     return [f] { return runMerge(*f); };

@@ -1,5 +1,6 @@
 #include "cli/scene_flags.hpp"
 
+#include "cli/commands.hpp"
 #include "core/text.hpp"
 #include "scene/scene_file.hpp"
 
@@ -48,7 +49,8 @@ std::function<bool(const scene::Param&)> tablesOf(std::initializer_list<scene::T
 }
 
 void addParamFlags(CLI::App& app, SceneOptions& o, const std::function<bool(const scene::Param&)>& keep) {
-    app.add_option("--scene", o.sceneFile, "scene file (TOML) whose keys are these flags; flags given here override it");
+    app.add_option("--scene", o.sceneFile, "scene file (TOML) whose keys are these flags; flags given here override it")
+        ->check(nonEmpty());
     for (const scene::Param& p : scene::registry()) {
         if (keep && !keep(p)) continue;
         const auto d = o.defaults.find(p.name);

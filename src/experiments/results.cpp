@@ -104,23 +104,31 @@ std::string fingerprint(const Experiment& e, const Configuration& c) {
 
 namespace {
 
-/// What a row's columns show changed between the configuration it measured and `c`, or "".
+/// What a row's columns show changed between the configuration it measured and `c`, or "". The keys the
+/// configuration sets are compared first (an edit is most likely there), then every other column.
 std::string whatDiffers(const nlohmann::json& row, const Configuration& c) {
-    for (const scene::Param& p : scene::registry()) {
-        if (p.column.empty() || !row.contains(p.column) || row[p.column].is_null()) continue;
+    auto differs = [&](const scene::Param& p) -> std::string {
+        if (p.column.empty() || !row.contains(p.column) || row[p.column].is_null()) return "";
         const nlohmann::json& was = row[p.column];
         const std::string now = c.values.text(p.name);
-        bool differs = false;
+        if (now.empty()) return "";
+        bool other = false;
         if (was.is_number()) {
             const auto n = parseNumber(now);
-            differs = n && std::abs(*n - was.get<double>()) > 1e-9 * std::max(1.0, std::abs(*n));
+            other = n && std::abs(*n - was.get<double>()) > 1e-9 * std::max(1.0, std::abs(*n));
         } else if (was.is_string() && p.kind == scene::Kind::Choice) {
-            differs = was.get<std::string>() != now;
+            other = was.get<std::string>() != now;
         }
-        if (differs)
-            return " was measured with " + p.name + " = " + (was.is_string() ? was.get<std::string>() : csvField(was)) +
-                   ", the experiment now says " + now;
-    }
+        if (!other) return "";
+        return " was measured with " + p.name + " = " + (was.is_string() ? was.get<std::string>() : csvField(was)) +
+               ", the experiment now says " + now;
+    };
+    for (const auto& [name, value] : c.values.given())
+        if (const scene::Param* p = scene::find(name))
+            if (auto d = differs(*p); !d.empty()) return d;
+    for (const scene::Param& p : scene::registry())
+        if (!c.values.given(p.name))
+            if (auto d = differs(p); !d.empty()) return d;
     return "";
 }
 
