@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -91,6 +93,8 @@ struct Scratch : TempDir {
         mkfifo((*this / "fifo").c_str(), 0644);
         fs::create_symlink(*this / "existing.png", path / "link.png");
         fs::create_symlink("/dev/null", path / "devlink");
+        fs::create_directories(path / "runlink");
+        fs::create_symlink(*this / "file.txt", path / "runlink" / "results.jsonl");
     }
 };
 
@@ -257,6 +261,8 @@ std::vector<Case> pathCases() {
         {"run {d}/tiny.toml -o {d}/file.txt/sub", 2, "-o: '{d}/file.txt' is a regular file"},
         {"run {d}/tiny.toml -o {d}/fifo", 2, "-o: '{d}/fifo' is a FIFO, not a folder"},
         {"run {d}/tiny.toml -o /dev/null", 2, "-o: '/dev/null' is a character device"},
+        {"run {d}/tiny.toml -o {d}/runlink", 2, "-o: '{d}/runlink/results.jsonl' is a symlink"},
+        {"merge {d}/dir -o {d}/runlink", 2, "holds no experiment.toml"},
         {"merge {d}/dir -o {d}/m", 2, "holds no experiment.toml"},
         {"merge {d}/missing -o {d}/m", 2, "holds no experiment.toml"},
     };
@@ -377,6 +383,14 @@ TEST_CASE("cli::hostile a disk filling up mid-run: non-zero exit, rows intact, -
     CHECK(all.size() == 162);
     CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());  // every row once
     CHECK(rowLines(mnt + "/r/results.csv").size() == 163);
+    // A read-only filesystem: refused up front with the reason, not an internal error.
+    REQUIRE(mount("tmpfs", mnt.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, "size=4m") == 0);
+    const Result ro = hilite("run " + (d / "ramp.toml") + " -o " + mnt + "/r2");
+    CHECK(ro.code == 2);
+    CHECK(ro.out.find("Read-only file system") != std::string::npos);
+    const Result roRender = hilite("render --size 32 -o " + mnt + "/x.png");
+    CHECK(roRender.code == 2);
+    CHECK(roRender.out.find("Read-only file system") != std::string::npos);
     umount2(mnt.c_str(), MNT_DETACH);
 }
 
@@ -401,7 +415,17 @@ TEST_CASE("cli::hostile two runs into one folder: the second is refused at once,
         CHECK(second.out.find("is being written by another hilite run or merge") != std::string::npos);
     }
     CHECK(configsOf(d / "r/results.jsonl").size() == 162);
-    // The same for a merge into a folder a run is writing.
+    // A merge into a folder that another process holds is refused the same way, and writes nothing there.
+    REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "ramp.toml") + " --shard 1/40 -o " + (d / "s")) == 0);
+    fs::create_directories(d.path / "m");
+    const int fd = open((d / "m/.hilite.lock").c_str(), O_RDWR | O_CREAT, 0644);
+    REQUIRE(fd >= 0);
+    REQUIRE(flock(fd, LOCK_EX) == 0);
+    const Result merge = hilite("merge " + (d / "s") + " -o " + (d / "m"));
+    close(fd);
+    CHECK(merge.code == 2);
+    CHECK(merge.out.find("is being written by another hilite run or merge") != std::string::npos);
+    CHECK_FALSE(fs::exists(d / "m/results.jsonl"));
 }
 
 TEST_CASE("cli::hostile --resume after editing the experiment is refused, naming what differs") {
