@@ -9,6 +9,7 @@
 
 #include "core/text.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 
@@ -56,6 +57,12 @@ int runRender(const RenderFlags& f) {
     render::Renderer renderer(context);
     renderer.setShaderTimeLimit(r.shaderTimeoutS);
     const ImageF img = renderer.render(scene, camera, render::Output::Color);
+    // A NaN or Inf pixel would be a black PNG, a PFM nobody can use and a printed peak=inf: refuse instead.
+    size_t nonFinite = 0;
+    for (float v : img.data) nonFinite += !std::isfinite(v);
+    if (nonFinite)
+        throw InputError("render: " + std::to_string(nonFinite) + " pixel values are NaN or Inf (the BRDF is not finite "
+                         "there, e.g. a lobe infinite at its peak); nothing written");
     const double peak = peakOf(img);
     if (!f.png.empty()) {
         io::Exposure e;
