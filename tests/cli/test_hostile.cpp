@@ -365,6 +365,10 @@ TEST_CASE("cli::hostile a disk filling up mid-run: non-zero exit, rows intact, -
         MESSAGE("skipped: mount -t tmpfs is not available here");
         return;
     }
+    struct Unmount {  // before the scratch folder is removed, whatever fails below
+        std::string at;
+        ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
+    } unmount{mnt};
     const Result full = hilite("run " + (d / "ramp.toml") + " -o " + mnt + "/r");
     CHECK(full.code == 3);
     CHECK(full.out.find("No space left on device") != std::string::npos);
@@ -391,7 +395,6 @@ TEST_CASE("cli::hostile a disk filling up mid-run: non-zero exit, rows intact, -
     const Result roRender = hilite("render --size 32 -o " + mnt + "/x.png");
     CHECK(roRender.code == 2);
     CHECK(roRender.out.find("Read-only file system") != std::string::npos);
-    umount2(mnt.c_str(), MNT_DETACH);
 }
 
 TEST_CASE("cli::hostile two runs into one folder: the second is refused at once, the first completes") {
