@@ -55,6 +55,16 @@ void printTableRow(const nlohmann::json& j) {
                 deg("minor_deg", 9).c_str(), cell(num("orientation_deg"), "%*.2f", 7).c_str(), deg("centroid_u_deg", 8).c_str(),
                 deg("centroid_v_deg", 8).c_str(), deg("fwhm_u_deg", 8).c_str(), deg("fwhm_v_deg", 8).c_str(),
                 flags.c_str());
+    if (j.contains("parts")) {  // a region in several parts: the line above is all of them, these each one
+        int k = 0;
+        for (const auto& p : j["parts"]) {
+            auto pn = [&](const char* key) { return p[key].is_null() ? NAN : p[key].get<double>(); };
+            std::printf("  part %d%s: aspect %.5f major %.4f minor %.4f orient %.2f cu %.4f cv %.4f area %.4g deg2%s\n",
+                        ++k, p["holds_peak"].get<bool>() ? " (peak)" : "", pn("aspect"), pn("major_deg"),
+                        pn("minor_deg"), pn("orientation_deg"), pn("centroid_u_deg"), pn("centroid_v_deg"),
+                        pn("area_deg2"), p["horizon_cut"].get<bool>() ? " horizon_cut" : "");
+        }
+    }
     if (j.contains("error_estimate") && j["error_estimate"].is_object()) {  // a .brdf: resolution convergence
         auto err = [&](const char* k) {
             return j["error_estimate"][k].is_null() ? NAN : j["error_estimate"][k].get<double>();

@@ -21,6 +21,8 @@ const char* toString(Flag f) {
         case Flag::EffectivelyMirror: return "effectively_mirror";
         case Flag::UnboundedAtHorizon: return "unbounded_at_horizon";
         case Flag::NotStarShaped: return "not_star_shaped";
+        case Flag::PartsNotMeasured: return "parts_not_measured";
+        case Flag::NotConverged: return "not_converged";
     }
     return "unknown";
 }
@@ -58,7 +60,29 @@ void validate(const Options& opt) {
     }
 }
 
-void setEllipse(Shape& s, const AreaMoments& m) {
+AreaMoments combine(const AreaMoments& a, const AreaMoments& b) {
+    if (!(a.area > 0)) return b;
+    if (!(b.area > 0)) return a;
+    AreaMoments m;
+    m.area = a.area + b.area;
+    const double wa = a.area / m.area, wb = b.area / m.area;
+    m.mean_u = wa * a.mean_u + wb * b.mean_u;
+    m.mean_v = wa * a.mean_v + wb * b.mean_v;
+    const double au = a.mean_u - m.mean_u, av = a.mean_v - m.mean_v;
+    const double bu = b.mean_u - m.mean_u, bv = b.mean_v - m.mean_v;
+    m.cuu = wa * (a.cuu + au * au) + wb * (b.cuu + bu * bu);
+    m.cuv = wa * (a.cuv + au * av) + wb * (b.cuv + bu * bv);
+    m.cvv = wa * (a.cvv + av * av) + wb * (b.cvv + bv * bv);
+    return m;
+}
+
+namespace {
+
+struct EllipseFields {
+    double aspect, eccentricity, major, minor, orientation;
+};
+
+EllipseFields ellipseOf(const AreaMoments& m) {
     // Eigenvalues of [[cuu, cuv], [cuv, cvv]]: lmax = mean + hypot(half difference, cuv), which adds
     // non-negative terms; lmin = det / lmax avoids the cancellation of mean - hypot for thin ellipses.
     const double halfSum = 0.5 * (m.cuu + m.cvv);
@@ -67,17 +91,31 @@ void setEllipse(Shape& s, const AreaMoments& m) {
     const double det = m.cuu * m.cvv - m.cuv * m.cuv;
     const double lmin = lmax > 0.0 ? std::clamp(det / lmax, 0.0, lmax) : 0.0;
     const double ratio = lmax > 0.0 ? lmin / lmax : 1.0;  // a single point counts as round
-    s.aspect = std::sqrt(ratio);
-    s.eccentricity = safeSqrt(1.0 - ratio);
-    s.major_deg = rad2deg(2.0 * std::sqrt(lmax));
-    s.minor_deg = rad2deg(2.0 * std::sqrt(lmin));
     // Major axis angle, 0.5 atan2(2 cuv, cuu - cvv) in [-90, 90]; fold -90 (from atan2(-0, x<0)) onto 90.
     double orientation = rad2deg(0.5 * std::atan2(2.0 * m.cuv, m.cuu - m.cvv));
-    if (orientation <= -90.0) orientation += 180.0;
-    s.orientation_deg = orientation;
+    // -90 and 90 are the same axis: fold -90 (from atan2(-0, x < 0)) and what rounding leaves near it onto 90.
+    if (orientation <= -90.0 + 1e-4) orientation = std::min(90.0, orientation + 180.0);
+    return {std::sqrt(ratio), safeSqrt(1.0 - ratio), rad2deg(2.0 * std::sqrt(lmax)), rad2deg(2.0 * std::sqrt(lmin)),
+            orientation};
+}
+
+template <class S>
+void fill(S& s, const AreaMoments& m) {
+    const EllipseFields e = ellipseOf(m);
+    s.aspect = e.aspect;
+    s.eccentricity = e.eccentricity;
+    s.major_deg = e.major;
+    s.minor_deg = e.minor;
+    s.orientation_deg = e.orientation;
     s.centroid_u_deg = rad2deg(m.mean_u);
     s.centroid_v_deg = rad2deg(m.mean_v);
     s.area_deg2 = rad2deg(rad2deg(m.area));
+    s.moments = m;
 }
+
+}  // namespace
+
+void setEllipse(Shape& s, const AreaMoments& m) { fill(s, m); }
+void setEllipse(PartShape& s, const AreaMoments& m) { fill(s, m); }
 
 }  // namespace hilite::measure

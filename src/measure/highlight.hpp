@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <iosfwd>
+#include <limits>
 #include <vector>
 
 namespace hilite::measure {
@@ -29,6 +30,12 @@ enum class Flag {
     /// reference only: the region is not star-shaped about its peak (a ring, two lobes), so the polar
     /// contour from the peak misses part of it; the GL pixels have no such assumption
     NotStarShaped,
+    /// the survey of the hemisphere found parts of the region that this measurement did not measure (a
+    /// part no view could frame): the numbers describe the measured parts only
+    PartsNotMeasured,
+    /// reference only: the scan lines' adaptive quadrature ran out of its budget before its tolerance (a lobe
+    /// far thinner than any box the survey could give it): the numbers are the last estimate
+    NotConverged,
 };
 
 /// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame", "mirror",
@@ -43,10 +50,34 @@ struct Options {
     /// a straight contour through the pixel located by linear interpolation of L (errors O(pixel^2)).
     /// false: each pixel counts whole or not at all by the L at its centre (lattice noise of ~pixel^1.5).
     bool subpixel = true;
+    /// measureImage and the Supersampler: > 0 sets the region's level L >= level outright (the global peak
+    /// x threshold, known from another view: a part of a region in several parts measured in a view of its
+    /// own); 0: threshold x the image's own peak.
+    double level = 0;
 };
 std::ostream& operator<<(std::ostream&, const Options&);
 /// Throws InputError unless threshold is in (0, 1) and minPixelsAcross >= 1 (both measure functions call it).
 void validate(const Options&);
+
+/// Zeroth, first and central second area moments of a region in the (u,v) plane (radians).
+struct AreaMoments {
+    double area = 0;                   ///< M0 (rad^2)
+    double mean_u = 0, mean_v = 0;     ///< centroid (rad)
+    double cuu = 0, cuv = 0, cvv = 0;  ///< central second moments / M0 (rad^2)
+};
+
+/// The moments of the union of two disjoint regions (parallel-axis theorem).
+AreaMoments combine(const AreaMoments& a, const AreaMoments& b);
+
+/// One connected part of the region, with its own ellipse (the same definition, on the part alone).
+struct PartShape {
+    double aspect = 0, eccentricity = 0, major_deg = 0, minor_deg = 0, orientation_deg = 0;
+    double centroid_u_deg = 0, centroid_v_deg = 0, area_deg2 = 0;
+    bool horizon_cut = false;  ///< the horizon bounds this part
+    bool holds_peak = false;   ///< the global peak lies in it
+    bool measured = true;      ///< false: found by the survey but not measured (see Flag::PartsNotMeasured)
+    AreaMoments moments;       ///< radians
+};
 
 /// The measured highlight. Angles in degrees, relative to the mirror direction (u = v = 0).
 struct Shape {
@@ -61,21 +92,22 @@ struct Shape {
     long region_pixels = 0;                 ///< 0 for the reference
     double minor_pixels = 0;                ///< pixels across the minor axis, 2*minor / pitch; +inf for the reference
     std::vector<Flag> flags;
+    /// Connected parts of the region {L >= frac * peak} (rule 3 of the definition: every part counts; the
+    /// fields above describe them all together). 0 with no highlight.
+    int components = 1;
+    /// Each part's own ellipse, the part holding the peak first; empty when the region is one part.
+    std::vector<PartShape> parts;
+    AreaMoments moments;  ///< of the whole region (radians), as the ellipse fields above were set from
 
     bool has(Flag f) const;
 };
 std::ostream& operator<<(std::ostream&, const Shape&);
 
-/// Zeroth, first and central second area moments of a region in the (u,v) plane (radians).
-struct AreaMoments {
-    double area = 0;                   ///< M0 (rad^2)
-    double mean_u = 0, mean_v = 0;     ///< centroid (rad)
-    double cuu = 0, cuv = 0, cvv = 0;  ///< central second moments / M0 (rad^2)
-};
-
 /// \brief Fill the ellipse fields of `s` (aspect, eccentricity, axes, orientation, centroid, area)
 /// from the moments, by the closed-form eigen-decomposition of the symmetric 2x2 matrix.
 void setEllipse(Shape& s, const AreaMoments& m);
+/// The same for one part.
+void setEllipse(PartShape& s, const AreaMoments& m);
 
 /// \brief Analyse the GL measurement view.
 /// \param pixels width*height*4 floats, row-major, row 0 at the bottom, per pixel (L, u, v, w): L the
@@ -108,5 +140,22 @@ struct LobeFunction {
 /// over the search disc checks it, and NotStarShaped says when it fails.
 Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u = 0,
                        double hint_v = 0);
+
+/// A box of the chart (radians) that holds part of the region (from a survey of the hemisphere).
+struct ChartBox {
+    double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+    /// a point of the region in the box (NaN: none known): every line samples it, and the lines are placed
+    /// about it on the scale of the region's extent there, so a part far smaller than its box is still found
+    double su = std::numeric_limits<double>::quiet_NaN(), sv = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// \brief The reference that no topology fools: the region {L >= threshold * peak} cut by lines v = const
+/// over the boxes, each line an exact set of intervals (every crossing of the threshold or the horizon
+/// bisected to rounding; 256 samples per box find every interval wider than 1/256 of it), the lines placed
+/// by adaptive Gauss-Kronrod 7/15 to 1e-8 of the moments. Any number of parts (components, parts), peaks
+/// anywhere; a box the region runs past grows. `peak` and its place (radians) come from the caller: the
+/// global peak, found over the whole hemisphere. Flags: HorizonCut, NoHighlight.
+Shape measureLines(const LobeFunction& f, const Options& opt, double peak, double peak_u, double peak_v,
+                   std::vector<ChartBox> boxes);
 
 }  // namespace hilite::measure

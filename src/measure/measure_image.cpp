@@ -373,12 +373,12 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     const Pixels px{pixels, width, height, dense.get()};
     Shape s;
     Survey sv = survey(px);
-    if (!(sv.peak > 0.f)) {  // all dark, or nothing visible
+    if (!(sv.peak > 0.f) || (opt.level > 0 && double(sv.peak) < opt.level)) {  // all dark, nothing visible or above the level
         s.flags.push_back(Flag::NoHighlight);
         return s;
     }
     locatePeak(px, sv);
-    const Threshold th(opt.threshold * double(sv.peak));
+    const Threshold th(opt.level > 0 ? opt.level : opt.threshold * double(sv.peak));
     const RegionSums sums = scanRegion(px, sv, th, opt.subpixel);  // never empty: the peak pixel is in it
     const dvec2 peakUV = px.uv(sv.x, sv.y);
     setEllipse(s, toMoments(sums.m, peakUV));

@@ -171,6 +171,25 @@ bool beyondContour(const LobeFunction& f, const std::vector<double>& r, dvec2 p,
     return false;
 }
 
+/// Whether some ray from the peak comes back into the region after leaving it: every 8th contour ray is
+/// sampled at 64 points from just past its boundary to where it leaves the visible chart. With the grid of
+/// beyondContour (inside the search disc) this is the test that makes the polar contour a proven fast path.
+bool raysReenter(const LobeFunction& f, const std::vector<double>& r, dvec2 p, double T) {
+    const int K = int(r.size());
+    for (int k = 0; k < K; k += 8) {
+        const double phi = 2.0 * kPi * k / K;
+        const dvec2 dir(std::cos(phi), std::sin(phi));
+        const Ray ray{f, p, dir, T};
+        double end = 1.01 * r[size_t(k)] + 1e-9;
+        while (end < 2.0 * kPi && ray.visible(end * 1.25)) end *= 1.25;
+        for (int i = 1; i <= 64; ++i) {
+            const double t = 1.01 * r[size_t(k)] + 1e-9 + (end * 1.25 - 1.01 * r[size_t(k)]) * i / 64.0;
+            if (ray.in(t)) return true;
+        }
+    }
+    return false;
+}
+
 }  // namespace
 
 Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u, double hint_v) {
@@ -204,7 +223,9 @@ Shape measureReference(const LobeFunction& f, const Options& opt, double searchR
     s.fwhm_u_deg = rad2deg(r[0] + r[kContourAngles / 2]);
     s.fwhm_v_deg = rad2deg(r[kContourAngles / 4] + r[3 * kContourAngles / 4]);
     if (cut) s.flags.push_back(Flag::HorizonCut);
-    if (beyondContour(f, r, peak.q, opt.threshold * peak.L, hint, searchRadius)) s.flags.push_back(Flag::NotStarShaped);
+    if (beyondContour(f, r, peak.q, opt.threshold * peak.L, hint, searchRadius) ||
+        raysReenter(f, r, peak.q, opt.threshold * peak.L))
+        s.flags.push_back(Flag::NotStarShaped);
     return s;
 }
 

@@ -84,7 +84,11 @@ Shape Supersampler::measure(const Options& opt) const {
         s.flags.push_back(Flag::NoHighlight);
         return s;
     }
-    const double T = opt.threshold * double(m_peak);
+    const double T = opt.level > 0 ? opt.level : opt.threshold * double(m_peak);
+    if (!(double(m_peak) >= T)) {
+        s.flags.push_back(Flag::NoHighlight);
+        return s;
+    }
     const size_t n = m_sums.size(), k = size_t(m_samples);
     Combined c{m_width, m_height, std::vector<double>(n, 0.0), std::vector<double>(n, 0.0),
                std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<char>(n, 0),

@@ -80,7 +80,7 @@ void diagnose(const render::Scene& scene, double threshold, Path path, measure::
         if (lightReaches(scene) && F > 0) replace(shape, Flag::NoHighlight, Flag::Mirror);
         return;
     }
-    if (unboundedAtHorizon(scene, shape)) shape.flags.push_back(Flag::UnboundedAtHorizon);
+    if (unboundedAtHorizon(scene, shape) && !shape.has(Flag::UnboundedAtHorizon)) shape.flags.push_back(Flag::UnboundedAtHorizon);
     const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
     if (!(w.peak > 0)) return;
     // The lobe exists, yet no pixel centre of a fixed frame sees it: the frame is too coarse for it.

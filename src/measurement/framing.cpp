@@ -10,11 +10,13 @@ dvec3 liftAboveHorizon(dvec3 c) {
     return c;
 }
 
-RegionBox regionBox(const ImageF& img, double frac) {
+namespace {
+
+RegionBox boxAbove(const ImageF& img, double frac, double level) {
     RegionBox b;
     for (size_t i = 0; i < img.data.size(); i += 4) b.peak = std::max(b.peak, double(img.data[i]));
     if (!(b.peak > 0)) return b;
-    const double t = frac * b.peak;
+    const double t = level > 0 ? level : frac * b.peak;
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x)
             if (img.pixel(x, y)[0] >= t) {
@@ -23,6 +25,11 @@ RegionBox regionBox(const ImageF& img, double frac) {
             }
     return b;
 }
+
+}  // namespace
+
+RegionBox regionBox(const ImageF& img, double frac) { return boxAbove(img, frac, 0.0); }
+RegionBox regionBoxAbove(const ImageF& img, double level) { return boxAbove(img, 0.0, level); }
 
 bool reframe(const PinholeCamera& cam, const RegionBox& box, double fill, Frame& f) {
     const bool onBorder = box.x0 == 0 || box.y0 == 0 || box.x1 == cam.width - 1 || box.y1 == cam.height - 1;

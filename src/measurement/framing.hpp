@@ -22,6 +22,8 @@ struct RegionBox {
     bool empty() const { return x1 < 0; }
 };
 RegionBox regionBox(const ImageF& img, double frac);
+/// The same for the region L >= level (an absolute value).
+RegionBox regionBoxAbove(const ImageF& img, double level);
 
 /// Where the measurement camera looks (exitant direction at the image centre) and how wide.
 struct Frame {

@@ -8,6 +8,7 @@
 #include "measure/supersample.hpp"
 #include "render/cpu_view.hpp"
 #include "measurement/peak_frame.hpp"
+#include "measurement/lobe_survey.hpp"
 #include "measurement/blind_framing.hpp"
 #include "measurement/framing.hpp"
 
@@ -85,11 +86,25 @@ struct Aim {
 
 /// Automatic framing: seed the frame from the twin's half-width, then let coarse renders correct the
 /// aim (off-specular shift, anisotropy, horizon) until the region sits inside the frame and fills most of it.
-Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup, Frame& frame, Measurement& m) {
+/// Aiming at one part of a region in several parts: its views keep only its pixels (keepPart), and the
+/// region is L >= level, the global peak's.
+struct PartAim {
+    const render::Scene* scene = nullptr;
+    const LobeSurvey* survey = nullptr;
+    int part = 0;
+    double level = 0;
+};
+
+void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part);  // below
+
+Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup, Frame& frame, Measurement& m,
+             const PartAim* part = nullptr) {
     thread_local ImageF coarse;  // reused across calls: no allocation per measurement
-    const double r = twinHalfWidth(scene, setup.options.threshold);
-    frame.fovDeg =
-        std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(r, 1.3)) / setup.fill)), kMinFovDeg, kMaxFovDeg);
+    if (!part) {  // a part's frame is seeded from its survey box by the caller
+        const double r = twinHalfWidth(scene, setup.options.threshold);
+        frame.fovDeg =
+            std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(r, 1.3)) / setup.fill)), kMinFovDeg, kMaxFovDeg);
+    }
     Aim aim;
     while (m.renders < setup.maxRenders - 1) {
         // The aiming renders keep the final frame's shape, so what fits them fits the final render.
@@ -102,7 +117,8 @@ Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup&
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
-        aim.box = regionBox(coarse, setup.options.threshold);
+        if (part) keepPart(coarse, *part->scene, *part);
+        aim.box = part ? regionBoxAbove(coarse, part->level) : regionBox(coarse, setup.options.threshold);
         aim.good = !aim.box.empty() && reframe(aim.camera, aim.box, setup.fill, frame);
         m.measure_ms += msSince(t0);
         if (aim.good || aim.box.empty()) break;
@@ -134,9 +150,11 @@ PixelRect cropOf(const Aim& aim, const PinholeCamera& fine) {
 /// The final render(s) of the frame and their analysis: one render and measureImage, or n x n jittered
 /// renders combined by the Supersampler.
 measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const PixelRect& crop, const MeasureSetup& setup,
-                       Measurement& m) {
+                       Measurement& m, const PartAim* part = nullptr, double level = 0) {
     thread_local ImageF img;  // reused: the readback never reallocates (4 MB at 512x512)
     const int n = setup.supersample;
+    measure::Options options = setup.options;
+    options.level = level;
     m.shadedPixels = crop.empty() ? long(cam.width) * cam.height : long(crop.width) * crop.height;
     if (n <= 1) {
         auto t0 = Clock::now();
@@ -144,7 +162,8 @@ measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixel
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
-        measure::Shape shape = measure::measureImage(img.data.data(), img.width, img.height, setup.options);
+        if (part) keepPart(img, *part->scene, *part);
+        measure::Shape shape = measure::measureImage(img.data.data(), img.width, img.height, options);
         m.measure_ms += msSince(t0);
         return shape;
     }
@@ -156,11 +175,12 @@ measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixel
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
+        if (part) keepPart(img, *part->scene, *part);
         ss.add(img.data.data());
         m.measure_ms += msSince(t0);
     }
     const auto t0 = Clock::now();
-    measure::Shape shape = ss.measure(setup.options);
+    measure::Shape shape = ss.measure(options);
     m.measure_ms += msSince(t0);
     return shape;
 }
@@ -176,10 +196,142 @@ bool aimResolves(const LobeWidths& widths, const MeasureSetup& setup, const Fram
     return !(minor > 0) || 2.0 * minor >= 2.0 * pitch;
 }
 
+void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part) {
+    // Image components of {L >= level} (4-connected; the level 0.1% lower so that each component holds all of
+    // its part's pixels however the float peak differs from the twin's), each owned by the survey part its
+    // brightest pixel lies in; the pixels of components owned by another part are set to 0.
+    const MirrorChart chart = scene.light.chart();
+    const int W = img.width, H = img.height;
+    const double level = part.level * (1.0 - 1e-3);
+    thread_local std::vector<int> seen, stack, pixels;
+    seen.assign(size_t(W) * size_t(H), 0);
+    auto L = [&](int i) { return double(img.data[4 * size_t(i)]); };
+    for (int start = 0; start < W * H; ++start) {
+        if (seen[size_t(start)] || !(L(start) >= level)) continue;
+        pixels.clear();
+        stack.assign(1, start);
+        seen[size_t(start)] = 1;
+        int brightest = start;
+        while (!stack.empty()) {
+            const int i = stack.back();
+            stack.pop_back();
+            pixels.push_back(i);
+            if (L(i) > L(brightest)) brightest = i;
+            const int x = i % W, y = i / W;
+            for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int nx = x + dx, ny = y + dy, j = ny * W + nx;
+                if (nx < 0 || ny < 0 || nx >= W || ny >= H || seen[size_t(j)] || !(L(j) >= level)) continue;
+                seen[size_t(j)] = 1;
+                stack.push_back(j);
+            }
+        }
+        const float* q = &img.data[4 * size_t(brightest)];
+        int owner = part.survey->partAt(chart.direction(q[1], q[2]));
+        if (owner < 0) {  // beyond the survey's samples: the part whose box holds it, else this view's
+            owner = part.part;
+            for (size_t k = 0; k < part.survey->parts.size(); ++k) {
+                const SurveyPart& b = part.survey->parts[k];
+                if (q[1] >= b.u0 && q[1] <= b.u1 && q[2] >= b.v0 && q[2] <= b.v1) {
+                    owner = int(k);
+                    break;
+                }
+            }
+        }
+        if (owner != part.part)
+            for (int i : pixels) img.data[4 * size_t(i)] = 0.f;
+    }
+}
+
+/// A region in several parts (the survey found them): each part framed and measured in a view of its own,
+/// at the level of the global peak (frac x the brightest pixel of the part holding the peak, measured
+/// first), and the parts' moments added (they are disjoint). `parts` says each part's own ellipse.
+Measurement measureParts(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup,
+                         const LobeSurvey& survey) {
+    Measurement m;
+    m.framing = "automatic (" + std::to_string(survey.parts.size()) + " parts, a view each)";
+    const MirrorChart chart = scene.light.chart();
+    measure::Shape total;
+    measure::AreaMoments moments;
+    double level = 0;
+    for (size_t k = 0; k < survey.parts.size(); ++k) {
+        const SurveyPart& p = survey.parts[k];
+        PartAim part{&scene, &survey, int(k), k == 0 ? survey.level : level};
+        const double half = 0.5 * std::max(p.u1 - p.u0, p.v1 - p.v0);
+        Frame frame{liftAboveHorizon(chart.direction(0.5 * (p.u0 + p.u1), 0.5 * (p.v0 + p.v1))),
+                    std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(half, 1.3)))), kMinFovDeg, kMaxFovDeg)};
+        aimFrame(view, scene, setup, frame, m, &part);
+        const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
+        const measure::Shape s = analyse(view, cam, PixelRect{}, setup, m, &part, k == 0 ? 0.0 : level);
+        if (k == 0) {
+            level = setup.options.threshold * s.peak;
+            total = s;  // the peak, its place and the widths through it
+            m.fovDeg = frame.fovDeg;
+            m.center = frame.center;
+        }
+        measure::PartShape ps;
+        setEllipse(ps, s.moments);
+        ps.horizon_cut = s.has(measure::Flag::HorizonCut);
+        ps.holds_peak = k == 0;
+        ps.measured = !s.has(measure::Flag::NoHighlight);
+        if (ps.measured) moments = measure::combine(moments, s.moments);
+        total.parts.push_back(ps);
+        if (k > 0) {
+            total.region_pixels += s.region_pixels;
+            total.minor_pixels = std::min(total.minor_pixels, s.minor_pixels);
+            for (measure::Flag f : s.flags)
+                if (f != measure::Flag::NoHighlight && !total.has(f)) total.flags.push_back(f);
+            // A view that found nothing of its part: the survey's part is another's (joined to it below the
+            // survey's resolution, so measured in that one's view) or lies below the level: nothing is missing.
+            // A part that runs out of its view is `clipped` (the flags above), not lost.
+        }
+    }
+    setEllipse(total, moments);
+    total.components = 0;
+    for (const auto& ps : total.parts) total.components += ps.measured;
+    if (total.components < 2) total.parts.clear();
+    m.shape = total;
+    return m;
+}
+
+/// With a fixed frame the parts outside it are not measured: say so.
+void flagPartsOutside(const render::Scene& scene, const LobeSurvey& survey, const PinholeCamera& cam,
+                      measure::Shape& shape) {
+    const MirrorChart chart = scene.light.chart();
+    for (const SurveyPart& p : survey.parts) {
+        double nx = 0, ny = 0;
+        const dvec3 we = chart.direction(p.seed.x, p.seed.y);
+        if (!cam.project(-we, nx, ny) || std::abs(nx) > 1 || std::abs(ny) > 1) {
+            if (!shape.has(measure::Flag::PartsNotMeasured)) shape.flags.push_back(measure::Flag::PartsNotMeasured);
+            return;
+        }
+    }
+}
+
+/// The survey, where the scene has what it needs: a CPU twin, a flat surface (bumps are framed by their
+/// analytic twin), a lobe with a peak.
+std::optional<LobeSurvey> surveyFor(const render::Scene& scene, double threshold) {
+    if (!render::hasTwin(scene) || scene.surface.bumps) return std::nullopt;
+    LobeSurvey s = surveyLobe(scene, threshold);
+    if (!(s.peak > 0)) return std::nullopt;
+    return s;
+}
+
+/// A lobe the survey found unbounded toward the horizon has no peak, however ordinary its pixels look.
+void flagUnbounded(const std::optional<LobeSurvey>& survey, measure::Shape& shape) {
+    if (survey && survey->unbounded && !shape.has(measure::Flag::UnboundedAtHorizon))
+        shape.flags.push_back(measure::Flag::UnboundedAtHorizon);
+}
+
 Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scene, const MeasureSetup& setup) {
     if (setup.supersample < 1 || setup.supersample > kMaxSupersample)
         throw InputError("--supersample: must be a whole number in [1, " + std::to_string(kMaxSupersample) +
                          "] (got " + std::to_string(setup.supersample) + ")");
+    const std::optional<LobeSurvey> survey = surveyFor(scene, setup.options.threshold);
+    if (survey && !survey->unbounded && survey->parts.size() > 1 && setup.fovDeg <= 0) {
+        Measurement m = measureParts(view, scene, setup, *survey);
+        diagnose(scene, setup.options.threshold, path, m.shape);
+        return m;
+    }
     Measurement m;
     m.framing = setup.fovDeg > 0 ? "fixed" : "automatic";
     Frame frame{liftAboveHorizon(scene.light.chart().wr()), setup.fovDeg};
@@ -193,6 +345,9 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     // The region reached the crop's edge: the crop was too tight, not the frame. Measure the whole frame.
     if (!crop.empty() && m.shape.has(measure::Flag::Clipped)) m.shape = analyse(view, cam, PixelRect{}, setup, m);
     diagnose(scene, setup.options.threshold, path, m.shape, &widths);  // mirror, sub-pixel lobes, float limits
+    if (survey && !survey->unbounded && survey->parts.size() > 1) flagPartsOutside(scene, *survey, cam, m.shape);
+    flagUnbounded(survey, m.shape);
+    if (m.shape.has(measure::Flag::NoHighlight)) m.shape.components = 0;
     m.fovDeg = frame.fovDeg;
     m.center = frame.center;
     return m;
@@ -234,8 +389,26 @@ Measurement measureReference(const render::Scene& scene, const measure::Options&
     Measurement m;
     m.framing = "reference";
     const auto t0 = Clock::now();
-    const double r = twinHalfWidth(scene, options.threshold);
-    m.shape = measure::measureReference(twinLobe(scene), options, std::min(4.0 * r, kPi / 2));
+    const LobeSurvey survey = surveyLobe(scene, options.threshold);
+    const measure::LobeFunction f = twinLobe(scene);
+    const double radius = std::min(4.0 * twinHalfWidth(scene, options.threshold), kPi / 2);
+    if (survey.peak > 0 && !survey.unbounded) {
+        // Fast path (~5 ms): the polar contour about the peak, where the region is one part, proven star-shaped
+        // about the global peak, and the horizon does not cut it (a kink there: second order only).
+        // Else the scan lines (~0.1-1 s), which assume nothing.
+        bool polar = survey.parts.size() == 1 && !survey.parts[0].horizon && !survey.peakOnHorizon;
+        if (polar) {
+            m.shape = measure::measureReference(f, options, radius, survey.peakUV.x, survey.peakUV.y);
+            polar = m.shape.peak >= survey.peak * (1.0 - 1e-9) && !m.shape.has(measure::Flag::NotStarShaped) &&
+                    !m.shape.has(measure::Flag::HorizonCut);
+        }
+        if (!polar)
+            m.shape = measure::measureLines(f, options, survey.peak, survey.peakUV.x, survey.peakUV.y, survey.boxes());
+    } else {  // no lobe, or one without a peak (G = 1 at the horizon): about the mirror direction, flagged
+        m.shape = measure::measureReference(f, options, radius);
+        if (survey.unbounded && !m.shape.has(measure::Flag::UnboundedAtHorizon))
+            m.shape.flags.push_back(measure::Flag::UnboundedAtHorizon);
+    }
     diagnose(scene, options.threshold, Path::Reference, m.shape);
     m.measure_ms = msSince(t0);
     return m;

@@ -1,6 +1,7 @@
 #include "measurement/peak_frame.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "measurement/lobe_survey.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -14,59 +15,20 @@ double angleDeg(const dvec3& a, const dvec3& b) { return rad2deg(std::atan2(glm:
 }  // namespace
 
 LobePeak findPeak(const render::Scene& scene) {
-    // measureGl and the result row both ask for the same scene's peak: the last answer is kept (per thread),
-    // keyed by everything the lobe depends on (the BRDF, the light; the chart centre does not move the peak).
-    std::ostringstream key;
-    key.precision(17);
-    key << scene << " type=" << int(scene.light.type) << " eye=" << scene.eyeDistance << " table="
-        << scene.brdf.ndfTable.get() << " spectrum=" << scene.brdf.spectrum.get();
-    thread_local std::string lastKey;
-    thread_local LobePeak last;
-    if (key.str() == lastKey) return last;
+    // The survey's global peak (measurement/lobe_survey.hpp: the whole hemisphere, climbs from the mirror,
+    // light and normal directions and from the grid's best local maxima), seen from the mirror direction.
     render::Scene mirror = scene;
     mirror.light.chartCenter.reset();
+    const LobeSurvey s = surveyLobe(mirror, 0.5);
     const dvec3 eye = render::eyePosition(mirror), wr = mirror.light.chart().wr(), wi = scene.light.direction();
-    auto lobe = [&](const dvec3& we) {
-        return we.z > 0.0 ? brdf::luminance(render::surfaceRadiance(scene, eye, we)) : 0.0;
-    };
     LobePeak p;
-    auto consider = [&](const dvec3& we) {
-        const double v = lobe(we);
-        if (v > p.value) p.value = v, p.direction = we;
-    };
-    for (const dvec3& c : {wr, wi, dvec3(0, 0, 1)}) consider(glm::normalize(dvec3(c.x, c.y, std::max(c.z, 1e-6))));
-    for (int i = 0; i < 30; ++i)
-        for (int j = 0; j < 60; ++j) consider(sphericalDirectionDeg(1.5 + 3.0 * i, 6.0 * j));
-    // Pattern search in a chart about the best point: take the best of four neighbours, else halve the step.
-    if (p.value > 0) {
-        render::Scene about = mirror;
-        about.light.chartCenter = p.direction;
-        const MirrorChart chart = about.light.chart();
-        double u = 0, v = 0;
-        for (double step = deg2rad(1.0); step > 1e-9;) {
-            bool moved = false;
-            for (auto [du, dv] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}}) {
-                const double x = lobe(chart.direction(u + du * step, v + dv * step));
-                if (x > p.value) p.value = x, u += du * step, v += dv * step, moved = true;
-            }
-            if (!moved) step *= 0.5;
-        }
-        p.direction = chart.direction(u, v);
-    }
-    // Does the lobe still rise below the peak, toward the horizon on the peak's azimuth (half its elevation)?
-    // Then the search stopped at the horizon rather than at a maximum of the lobe.
-    const double horizontal = std::hypot(p.direction.x, p.direction.y);
-    if (p.value > 0 && horizontal > 0) {
-        const double z = 0.5 * p.direction.z;
-        const dvec3 below = glm::normalize(dvec3(p.direction.x, p.direction.y, 0.0) / horizontal *
-                                               std::sqrt(1.0 - z * z) + dvec3(0.0, 0.0, z));
-        p.risesToHorizon = lobe(below) >= p.value;
-    }
-    p.mirrorValue = lobe(glm::normalize(dvec3(wr.x, wr.y, std::max(wr.z, 1e-6))));
+    p.value = s.peak;
+    p.direction = s.peakDirection;
+    p.risesToHorizon = s.peakOnHorizon;
+    const dvec3 w = glm::normalize(dvec3(wr.x, wr.y, std::max(wr.z, 1e-6)));
+    p.mirrorValue = brdf::luminance(render::surfaceRadiance(scene, eye, w));
     p.offsetDeg = angleDeg(p.direction, wr);
     p.fromLightDeg = angleDeg(p.direction, wi);
-    lastKey = key.str();
-    last = p;
     return p;
 }
 

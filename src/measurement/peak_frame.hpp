@@ -33,10 +33,7 @@ struct LobePeak {
     bool risesToHorizon = false;  ///< the lobe at half the peak's elevation is no lower: the peak is the horizon
 };
 
-/// The twin's peak: candidates (mirror direction, light direction, normal) and a grid over the visible
-/// hemisphere (3 deg in theta, 6 deg in phi: broad lobes; narrow ones peak at a candidate), the best refined by
-/// a shrinking pattern search in the chart about it (steps from 1 deg down to 1e-9 rad). Directional or point
-/// light alike (the eye's view). ~0.15 ms; the last scene's answer is kept per thread.
+/// The twin's global peak, from the hemisphere survey (lobe_survey.hpp), and what frameAboutPeak asks of it.
 LobePeak findPeak(const render::Scene& scene);
 
 /// The scene with its chart centred on the peak when the highlight must be framed about it (the mirror

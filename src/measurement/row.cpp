@@ -27,6 +27,17 @@ void shapeFields(json& j, const measure::Shape& r) {
     for (auto fl : r.flags) flags.push_back(measure::toString(fl));
     j["flags"] = flags;
     j["minor_pixels"] = finite(r.minor_pixels);
+    j["components"] = r.components;
+    if (!r.parts.empty()) {  // each part's own ellipse, the part holding the peak first
+        json parts = json::array();
+        for (const measure::PartShape& p : r.parts)
+            parts.push_back({{"aspect", finite(p.aspect)}, {"eccentricity", finite(p.eccentricity)},
+                             {"major_deg", finite(p.major_deg)}, {"minor_deg", finite(p.minor_deg)},
+                             {"orientation_deg", finite(p.orientation_deg)}, {"centroid_u_deg", finite(p.centroid_u_deg)},
+                             {"centroid_v_deg", finite(p.centroid_v_deg)}, {"area_deg2", finite(p.area_deg2)},
+                             {"horizon_cut", p.horizon_cut}, {"holds_peak", p.holds_peak}, {"measured", p.measured}});
+        j["parts"] = parts;
+    }
 }
 
 /// Without a CPU twin (a .brdf file) the error is estimated by measuring the same frame at half the size.
@@ -119,6 +130,7 @@ const std::vector<std::string>& measurementColumns() {
     static const std::vector<std::string> columns = {
         "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg", "centroid_u_deg", "centroid_v_deg",
         "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg", "area_deg2", "cos_incidence", "flags",
+        "components",
         "renders", "size", "fov_deg", "minor_pixels", "method", "matched_parameter", "brdf_params", "framing", "framing_note",
         "error_estimate", "error_estimate_from", "render_ms", "measure_ms",
         // what the highlight is measured about (retroreflection: its peak), a tabulated NDF's factor

@@ -44,6 +44,7 @@ struct SceneCase {
     std::vector<measure::Flag> glFlags;   ///< exactly the flags the GL measurement must report
     std::vector<measure::Flag> refFlags;  ///< exactly the flags the double reference must report
     double tolerance = 0;  ///< GL vs twin, relative, per pixel; 0: pixelTolerance() of the lobe
+    double aspectTolerance = 0;  ///< GL vs reference in aspect; 0: the suite's (0.005)
 };
 
 const std::vector<SceneCase>& sceneCases();

@@ -25,6 +25,7 @@ struct Row {
     Row& gl(std::vector<F> f) { return c.glFlags = std::move(f), *this; }
     Row& ref(std::vector<F> f) { return c.refFlags = std::move(f), *this; }
     Row& both(const std::vector<F>& f) { return gl(f).ref(f); }
+    Row& aspectTolerance(double t) { return c.aspectTolerance = t, *this; }
     Row& photo(double elevationDeg, double fovDeg = 40) { return c.camera = {View::Photo, fovDeg, elevationDeg}, *this; }
     /// Fixed framing for the measurement and the pixel checks alike.
     Row& fixed(double fovDeg, int size) {
@@ -81,15 +82,19 @@ std::vector<SceneCase> build() {
         Row("GGX alpha 1 (D uniform) at 45 deg", Model::GGX, 1.0, 45.0).gl(wide).ref(cut),
         Row("GGX alpha 10 (D peaks at grazing h) at 45 deg", Model::GGX, 10.0, 45.0)
             .gl({F::Clipped, F::HorizonCut})
-            .ref({F::HorizonCut, F::NotStarShaped}),
+            .ref(cut),
         Row("Beckmann m 0 (a perfect mirror) at 45 deg", Model::Beckmann, 0.0, 45.0).both({F::Mirror}),
         Row("Beckmann m 1e-7 at 45 deg", Model::Beckmann, 1e-7, 45.0).gl({F::EffectivelyMirror}).ref(none),
         Row("Beckmann m 1e-4 at 45 deg", Model::Beckmann, 1e-4, 45.0).both(none),
         Row("Beckmann m 1e-3 at 45 deg", Model::Beckmann, 1e-3, 45.0).both(none),
         Row("Beckmann m 1 at 45 deg", Model::Beckmann, 1.0, 45.0).gl(wide).ref(cut),
+        // The region reaches 135 deg from the mirror direction, the rim of a 160 deg pinhole view: GL aspect
+        // 0.4256 against the scan-line reference's 0.4113 at 512^2 (the polar reference, not star-shaped, was
+        // not compared before). A measured gap, kept visible here.
         Row("Beckmann m 10 (D peaks at grazing h) at 45 deg", Model::Beckmann, 10.0, 45.0)
+            .aspectTolerance(0.012)
             .gl(cut)
-            .ref({F::HorizonCut, F::NotStarShaped}),
+            .ref(cut),
         // Exponents of the reflection lobe (Phong) and the microfacet NDF (Blinn-Phong).
         Row("Phong n 0 (uniform) at 45 deg", Model::Phong, 0.0, 45.0).gl(wide).ref(cut),
         Row("Phong n 1 at 45 deg", Model::Phong, 1.0, 45.0).gl({F::Clipped, F::HorizonCut}).ref(cut),
@@ -109,7 +114,7 @@ std::vector<SceneCase> build() {
         Row("anisotropic Beckmann m 1e-4 x 1 at 45 deg", Model::Beckmann, 1e-4, 45.0)
             .roughnessY(1.0)
             .gl({F::Clipped, F::UnderResolved})
-            .ref({F::NotStarShaped}),
+            .ref({F::HorizonCut, F::NotConverged}),
         Row("anisotropic GGX alpha 1e-7 x 1e-3 at 45 deg", Model::GGX, 1e-7, 45.0)
             .roughnessY(1e-3)
             .gl({F::UnderResolved, F::EffectivelyMirror})
@@ -129,7 +134,7 @@ std::vector<SceneCase> build() {
             0.1, 0.0)
             .fresnel(Fresnel::Schlick, 1.5, 0, 0.0)
             .gl({F::Clipped})
-            .ref({F::HorizonCut, F::NotStarShaped}),
+            .ref(cut),
         Row("Schlick F0 0 at 45 deg", Model::GGX, 0.1, 45.0).fresnel(Fresnel::Schlick, 1.5, 0, 0.0).both(none),
         Row("Schlick F0 1 at 45 deg", Model::GGX, 0.1, 45.0).fresnel(Fresnel::Schlick, 1.5, 0, 1.0).both(none),
         // Highlights smaller than a pixel of a fixed frame (30 deg, 64 px: 8e-3 rad a pixel).
