@@ -307,8 +307,8 @@ void assign(BrdfFile& file, const std::string& assignments) {
             double v = 0;
             if (!parseNumber(text, v)) throw InputError(where + "not a finite number");
             if (v < p.min || v > p.max)
-                throw InputError(where + "outside the declared range [" + number(p.min) + ", " + number(p.max) +
-                                 "] of 'float " + p.name + "'");
+                throw InputError(where + "outside the declared range " + rangeText(p.min, p.max) + " of 'float " +
+                                 p.name + "'");
             p.value.x = v;
         } else {
             std::vector<double> rgb;

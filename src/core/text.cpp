@@ -51,6 +51,14 @@ std::string exactText(double v) {
     return "";
 }
 
+std::string rangeText(double lo, double hi, bool openLo, bool openHi) {
+    auto bound = [](double v) {
+        const std::string shortText = fmt(v);
+        return parseNumber(shortText) == v ? shortText : exactText(v);
+    };
+    return std::string(openLo ? "(" : "[") + bound(lo) + ", " + bound(hi) + (openHi ? ")" : "]");
+}
+
 std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates) {
     auto distance = [](const std::string& a, const std::string& b) {
         std::vector<size_t> row(b.size() + 1);

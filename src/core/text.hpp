@@ -19,6 +19,9 @@ std::string join(const std::vector<std::string>& items, const std::string& sep =
 std::string fmt(double v);
 /// The shortest decimal that reads back as exactly `v` (0.2, not 0.20000000000000001).
 std::string exactText(double v);
+/// An interval for messages and help, "[0, 1e+08]" or "(0, 179]": each bound as fmt() prints it where that
+/// reads back exactly, else exactText(), so the registry and .brdf files print one range one way.
+std::string rangeText(double lo, double hi, bool openLo = false, bool openHi = false);
 /// Closest of `candidates` to `word` by edit distance, or "" if none is close.
 std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates);
 
