@@ -52,11 +52,11 @@ int run(int argc, char** argv) {
         std::reverse(args.begin(), args.end());  // CLI11 takes the vector last argument first
         app.parse(args);
     } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
+        return finishStdout(app.exit(e));  // help into /dev/full is not delivered either
     } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
+        return finishStdout(app.exit(e));  // help into /dev/full is not delivered either
     } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
+        return finishStdout(app.exit(e));  // help into /dev/full is not delivered either
     } catch (const CLI::ParseError& e) {
         std::cerr << "hilite: " << e.what() << "\n";
         return 2;
