@@ -33,7 +33,7 @@ std::string quoted(const std::string& v) {
 /// A value as TOML: numbers and booleans bare, lists of numbers as arrays, everything else a string.
 std::string tomlValue(const scene::Param& p, const std::string& v) {
     if (p.kind == scene::Kind::Switch) return v;
-    if (p.kind == scene::Kind::Number || p.kind == scene::Kind::Integer) return v;
+    if ((p.kind == scene::Kind::Number || p.kind == scene::Kind::Integer) && parseNumber(v)) return v;
     if (p.kind == scene::Kind::Rgb) {
         const auto parts = split(v, ',');
         return parts.size() == 1 ? v : "[" + join(parts) + "]";

@@ -26,7 +26,7 @@ std::string helpText(const scene::Param& p, const std::string& def) {
     return h;
 }
 
-const char* typeName(scene::Kind k) {
+std::string typeName(scene::Kind k) {
     switch (k) {
         case scene::Kind::Number: return "NUM";
         case scene::Kind::Integer: return "INT";
@@ -76,7 +76,8 @@ void addParamFlags(CLI::App& app, SceneOptions& o, const std::function<bool(cons
             opt->check(CLI::Validator([entry](std::string& v) { return scene::check(*entry, v); }, ""));
         }
         opt->group(groupName(p.table));
-        if (p.kind != scene::Kind::Switch) opt->type_name(typeName(p.kind));
+        if (p.kind != scene::Kind::Switch)
+            opt->type_name(typeName(p.kind) + (p.automatic.empty() ? "" : "|" + p.automatic));
     }
 }
 

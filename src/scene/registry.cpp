@@ -152,16 +152,19 @@ std::vector<Param> build() {
     // ---- [camera] ----
     add({"size", T::Camera, K::Size, "512", 1, 16384, false, false, {}, "px", "image size: PX or WxH", "every scene",
          nullptr, "", nullptr});  // the row's size is the one rendered (measurement field `size`)
-    add({"fov", T::Camera, K::Number, "0", 0, 179, false, false, {}, "deg",
-         "field of view across the width; 0: the view's default (render: 30 measure, 40 photo) or automatic "
-         "framing (measure, at most 160 when fixed)",
+    add({"fov", T::Camera, K::Number, "auto", 0, 179, true, false, {}, "deg",
+         "field of view across the width; auto: the view's default (render: 30 measure, 40 photo) or automatic "
+         "framing (measure); a number: that field of view (measure: fixed framing, at most 160)",
          "fixed framing", fixedFraming, "fov", [](const Resolved& r) -> json { return r.fovDeg; }});
+    p.back().automatic = "auto";
     add({"view", T::Camera, K::Choice, "measure", 0, 0, false, false, {"measure", "photo"}, "",
          "render: measure (camera on the mirror direction) | photo (looking across the plane); measure always "
          "uses the measurement view",
          "render", nullptr, "", nullptr});
-    add({"elevation", T::Camera, K::Number, "0", 0, 90, false, false, {}, "deg",
-         "photo view: camera elevation; default (0) 90 - incidence", "render --view photo", nullptr, "", nullptr});
+    add({"elevation", T::Camera, K::Number, "auto", 0, 90, false, false, {}, "deg",
+         "photo view: camera elevation; auto: 90 - incidence, at least 0.5 (0: the plane seen edge-on)",
+         "render --view photo", nullptr, "", nullptr});
+    p.back().automatic = "auto";
     add({"distance", T::Camera, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
          "eye distance from the origin (photo view; measurement view under a point light)", "light point; photo view",
          point, "distance", [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
@@ -277,11 +280,9 @@ std::string Param::flag() const {
 std::string Param::key() const { return std::string(toString(table)) + "." + name; }
 
 std::string Param::allowed() const {
-    auto interval = [&] {
-        return std::string(openLo ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (openHi ? ")" : "]");
-    };
+    auto interval = [&] { return rangeText(lo, hi, openLo, openHi); };
     switch (kind) {
-        case Kind::Number:
+        case Kind::Number: return (automatic.empty() ? "" : automatic + " | ") + interval();
         case Kind::Integer: return interval();
         case Kind::Choice: return join(choices, " | ");
         case Kind::Rgb: return "V or R,G,B, each in " + interval();
@@ -344,9 +345,13 @@ std::string check(const Param& p, const std::string& text) {
     std::string err;
     switch (p.kind) {
         case Kind::Number: {
+            if (!p.automatic.empty() && text == p.automatic) break;
             const double v = number(text, err);
-            if (err.empty() && !inRange(v))
-                err = "must be a finite number in " + p.allowed() + " (got " + fmt(v) + ")";
+            const std::string range = rangeText(p.lo, p.hi, p.openLo, p.openHi);
+            const std::string either = p.automatic.empty() ? "" : p.automatic + " or ";
+            if (!err.empty() && !either.empty()) err = "expected " + either + "a number in " + range + " (got '" + text + "')";
+            else if (err.empty() && !inRange(v))
+                err = "must be " + either + "a finite number in " + range + " (got " + fmt(v) + ")";
             break;
         }
         case Kind::Integer: {

@@ -53,12 +53,15 @@ struct Param {
     /// run, such as the GL backend).
     std::string column;
     nlohmann::json (*value)(const Resolved&) = nullptr;
+    /// Number: a word read as "chosen automatically" besides the interval ("auto"), so no number in range
+    /// stands for automatic (--fov 0 meant automatic); "" for none.
+    std::string automatic = "";
 
     /// "--roughness-y"
     std::string flag() const;
     /// "material.roughness_y"
     std::string key() const;
-    /// The allowed values in words: "[0, 10]", "ggx, beckmann, ...", "V or R,G,B in [0, 1]".
+    /// The allowed values in words: "[0, 10]", "auto | (0, 179]", "ggx, beckmann, ...", "V or R,G,B in [0, 1]".
     std::string allowed() const;
     /// Whether the resolved scene uses it (its row carries it).
     bool usedBy(const Resolved& r) const { return !applies || applies(r); }

@@ -45,6 +45,12 @@ public:
         const std::string t = text(name);
         return t.empty() ? 0.0 : *parseNumber(t);
     }
+    /// A number that may also be its entry's automatic word: nullopt for that word.
+    std::optional<double> numberOrAutomatic(const char* name) const {
+        const std::string t = text(name);
+        if (t == param(name).automatic) return std::nullopt;
+        return *parseNumber(t);
+    }
     dvec3 rgb(const char* name) const {
         const auto parts = split(text(name), ',');
         dvec3 v;
@@ -307,12 +313,14 @@ Resolved resolve(const Values& values, Purpose purpose) {
     s.light.incidenceDeg = r.angles.front();
 
     in.size("size", r.setup.width, r.setup.height);
-    r.fovDeg = in.number("fov");
+    r.fovDeg = in.numberOrAutomatic("fov").value_or(0.0);  // 0: automatic (the registry refuses a given 0)
     if (purpose == Purpose::Measure && r.fovDeg > 160)
         throw InputError(in.where("fov") + ": fixed framing takes a field of view in (0, 160] (got " + fmt(r.fovDeg) + ")");
     r.setup.fovDeg = r.fovDeg;
     r.view = in.text("view") == "photo" ? View::Photo : View::Measure;
-    r.elevationDeg = in.number("elevation");
+    r.elevationDeg = in.numberOrAutomatic("elevation");
+    if (r.view == View::Photo && r.elevationDeg == 0.0)  // a valid view, but a black image needs saying why
+        warnOnce(in.where("elevation") + " 0: the camera lies in the plane and sees it edge-on: no surface in view");
     r.backend = in.text("gl_backend");
     r.setup.options.threshold = in.number("threshold");
     r.setup.options.minPixelsAcross = int(in.number("min_pixels"));
@@ -343,7 +351,8 @@ PinholeCamera viewCamera(const Resolved& r, View view, int width, int height) {
         if (center.z < 1e-6) center = glm::normalize(dvec3(center.x, center.y, 1e-6));
         return PinholeCamera::measurementFrom(chart, render::eyePosition(scene), center, fov, width, height);
     }
-    const double elevation = r.elevationDeg > 0 ? r.elevationDeg : std::max(0.5, 90.0 - scene.light.incidenceDeg);
+    // Automatic: opposite the light, kept 0.5 deg above the plane so a grazing light still shows the plane.
+    const double elevation = r.elevationDeg ? *r.elevationDeg : std::max(0.5, 90.0 - scene.light.incidenceDeg);
     const double fov = r.fovDeg > 0 ? r.fovDeg : 40.0;
     return PinholeCamera::photo(elevation, scene.light.azimuthDeg + 180.0, scene.eyeDistance, fov, width, height);
 }

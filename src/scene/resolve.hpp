@@ -9,6 +9,7 @@
 #include "scene/setup.hpp"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,8 @@ struct Resolved {
     double tolerance = 0;        ///< > 0: choose the settings that reach this aspect error
     bool reference = false;      ///< measure with the CPU double reference
     View view = View::Measure;   ///< render only: a measurement always uses the measurement view
-    double fovDeg = 0;           ///< 0: the view's default (render) or automatic framing (measure)
-    double elevationDeg = 0;     ///< photo view; 0: 90 - incidence
+    double fovDeg = 0;           ///< 0: --fov auto, the view's default (render) or automatic framing (measure)
+    std::optional<double> elevationDeg;  ///< photo view; none: --elevation auto, 90 - incidence
     std::string backend;         ///< as given ("" = $HILITE_GL_BACKEND or auto), checked
     double shaderTimeoutS = 10;
     int spectralStepNm = 5;

@@ -6,6 +6,7 @@
 #include "scene/scene_file.hpp"
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 #include <doctest/doctest.h>
 
@@ -41,6 +42,32 @@ TEST_CASE("scene::check refuses bad values with the allowed ones named") {
     CHECK(scene::check(*scene::find("threshold"), "1") != "");
     CHECK(scene::check(*scene::find("min_pixels"), "2.5") != "");
     CHECK(scene::check(*scene::find("min_pixels"), "3") == "");
+}
+
+TEST_CASE("scene: automatic is a word, never a number in range (--fov 0 meant automatic)") {
+    const scene::Param& fov = *scene::find("fov");
+    CHECK(fov.allowed() == "auto | (0, 179]");
+    CHECK(scene::check(fov, "auto") == "");
+    CHECK(scene::check(fov, "0") == "must be auto or a finite number in (0, 179] (got 0)");
+    CHECK(scene::check(fov, "Auto") == "expected auto or a number in (0, 179] (got 'Auto')");
+    const scene::Param& elevation = *scene::find("elevation");
+    CHECK(scene::check(elevation, "0") == "");
+    CHECK(scene::check(elevation, "auto") == "");
+    scene::Values v;
+    CHECK(scene::resolve(v).fovDeg == 0);  // auto: automatic framing
+    CHECK_FALSE(scene::resolve(v).elevationDeg.has_value());
+    v.set("elevation", "0");
+    v.set("fov", "20");
+    const auto r = scene::resolve(v, scene::Purpose::Render);
+    CHECK(r.elevationDeg == 0.0);
+    CHECK(r.fovDeg == 20);
+}
+
+TEST_CASE("rangeText: the bounds short where exact (1e+08, not 100000000), else every digit") {
+    CHECK(rangeText(0, 1e8) == "[0, 1e+08]");
+    CHECK(rangeText(0, 179, true, false) == "(0, 179]");
+    CHECK(rangeText(0.1234567, 1) == "[0.1234567, 1]");
+    CHECK(rangeText(1e-5, 0.1, false, true) == "[1e-05, 0.1)");
 }
 
 TEST_CASE("scene::resolve names the scene file, line and key of a bad value") {
