@@ -5,6 +5,9 @@
 #include "cli/scene_flags.hpp"
 #include "measurement/shader_probe.hpp"
 
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 namespace hilite::cli {
@@ -15,6 +18,13 @@ Action addProbeShader(CLI::App& app) {
     app.group("");  // hidden: run by probeShader() in a child process
     return [f] {
         const scene::Resolved r = scene::resolve(commandValues(*f), scene::Purpose::Render);
+        // Test hook: a GL driver crash cannot be provoked on purpose, so tests/cli/test_hostile.cpp makes
+        // this child die of the named signal after a line on stderr, as a Mesa compiler abort does.
+        if (const char* sig = std::getenv("HILITE_TEST_PROBE_SIGNAL"); sig && std::atoi(sig) > 0) {
+            std::fprintf(stderr, "test: simulated shader compiler crash\n");
+            std::signal(std::atoi(sig), SIG_DFL);
+            std::raise(std::atoi(sig));
+        }
         measurement::runShaderProbe(r.scene, scene::backendOf(r));
         return 0;
     };

@@ -9,7 +9,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -83,13 +85,48 @@ bool waitUntil(pid_t pid, std::chrono::steady_clock::time_point deadline, int& s
     }
 }
 
-std::string firstLine(std::string s) {
-    s = s.substr(0, s.find('\n'));
-    if (s.rfind("hilite: ", 0) == 0) s.erase(0, 8);
-    return s;
+/// The child's own one-line error: its last "hilite: " line (the GL driver may print warnings first), or "".
+std::string childError(const std::string& err) {
+    std::string found;
+    size_t start = 0;
+    while (start < err.size()) {
+        const size_t end = std::min(err.find('\n', start), err.size());
+        if (err.compare(start, 8, "hilite: ") == 0) found = err.substr(start + 8, end - start - 8);
+        start = end + 1;
+    }
+    return found;
+}
+
+/// The last non-blank line of the child's stderr, control characters shown as '?', at most 200 characters.
+std::string lastLine(const std::string& err) {
+    size_t end = err.size();
+    while (end > 0 && std::isspace(static_cast<unsigned char>(err[end - 1]))) --end;
+    const size_t begin = err.rfind('\n', end == 0 ? 0 : end - 1);
+    std::string line = err.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1));
+    for (char& c : line)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return line.size() > 200 ? line.substr(0, 200) + "..." : line;
 }
 
 }  // namespace
+
+std::string probeFailure(const std::string& path, int status, const std::string& err) {
+    const std::string tail = lastLine(err);
+    const std::string said = tail.empty() ? "it printed nothing" : "its last output: '" + tail + "'";
+    if (WIFSIGNALED(status)) {
+        const int sig = WTERMSIG(status);
+        const char* abbrev = sigabbrev_np(sig);
+        const char* text = strsignal(sig);
+        return path + ": the shader probe (a child process compiling and drawing the shader) was killed by signal " +
+               std::to_string(sig) + " (" + (abbrev ? "SIG" + std::string(abbrev) : "unknown") +
+               (text ? ", " + std::string(text) : "") + "): the GL driver crashed on this shader; " + said;
+    }
+    if (WIFEXITED(status))
+        return path + ": the shader probe (a child process compiling and drawing the shader) ended with exit status " +
+               std::to_string(WEXITSTATUS(status)) + (WEXITSTATUS(status) == 127 ? " (hilite could not be run)" : "") +
+               "; " + said;
+    return path + ": the shader probe ended abnormally (wait status " + std::to_string(status) + "); " + said;
+}
 
 void probeShader(const render::Scene& scene, const std::string& backend, double timeoutSeconds) {
     if (!scene.brdfFile) return;
@@ -129,11 +166,15 @@ void probeShader(const render::Scene& scene, const std::string& backend, double 
                          " pixels, in a child process); stopped (raise --shader-timeout if it is only slow)");
     }
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 2) throw InputError(firstLine(err));
-    throw SystemError("shader probe of " + scene.brdfFile->path + " failed (" +
-                      (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
-                                           : "exit " + std::to_string(WEXITSTATUS(status))) +
-                      "): " + firstLine(err));
+    const std::string own = childError(err);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 2 && !own.empty()) throw InputError(own);
+    // A crash (a Mesa compiler abort printed no "hilite:" line and left the reason empty) is the shader's:
+    // exit 2 naming the file. A child that could not start or found no GL is the system's: exit 3.
+    const bool system = WIFEXITED(status) && (WEXITSTATUS(status) == 3 || WEXITSTATUS(status) == 127);
+    const std::string why = own.empty() || !WIFEXITED(status) ? probeFailure(scene.brdfFile->path, status, err)
+                                                              : scene.brdfFile->path + ": shader probe: " + own;
+    if (system) throw SystemError(why);
+    throw InputError(why);
 }
 
 /// The child: compile both outputs and render the probe views; any failure is the usual one-line error.

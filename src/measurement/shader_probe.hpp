@@ -18,6 +18,11 @@ namespace hilite::measurement {
 /// the child's own one-line InputError when the .brdf does not build (its GLSL errors name its lines).
 void probeShader(const render::Scene& scene, const std::string& backend, double timeoutSeconds);
 
+/// The message for a probe child that ended without its own error line: the .brdf file, how the child ended
+/// (signal number and name, or exit status) and the last line it printed ("it printed nothing" if none).
+/// `status` is a wait status (waitpid).
+std::string probeFailure(const std::string& path, int status, const std::string& err);
+
 /// What the child does (the hidden subcommand `hilite probe-shader`): compiles both outputs and renders the
 /// probe views; a failure is the usual one-line InputError.
 void runShaderProbe(render::Scene scene, gl::Backend backend);
