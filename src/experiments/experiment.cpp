@@ -12,7 +12,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <iostream>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -588,42 +590,63 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
     return e;
 }
 
-std::vector<Configuration> Experiment::configurations() const {
+Configurations::Configurations(const Experiment& e) : m_e(&e) {
     double total = 1;
-    for (const auto& a : axes) total *= double(a.values.size());
+    for (const auto& a : e.axes) total *= double(a.values.size());
     if (total > double(kMaxConfigurations))
-        throw InputError(path + ": the sweep axes give " + std::to_string(long(total)) + " configurations (at most " +
+        throw InputError(e.path + ": the sweep axes give " + std::to_string(long(total)) + " configurations (at most " +
                          std::to_string(kMaxConfigurations) + ")");
-    std::vector<Configuration> configs;
+    m_size = size_t(total);
+}
+
+Configuration Configurations::operator[](size_t index) const {
+    const auto& axes = m_e->axes;
+    Configuration c;
+    c.index = long(index);
+    c.values = m_e->base;
+    // Mixed radix, the last axis fastest: the order the rows have always had.
     std::vector<size_t> idx(axes.size(), 0);
-    for (long index = 0;; ++index) {
-        Configuration c;
-        c.index = index;
-        c.values = base;
-        for (size_t a = 0; a < axes.size(); ++a) {
-            c.sweep[axes[a].key] = typed(axes[a].values[idx[a]]);
-            if (axes[a].cases.empty()) {
-                c.values.merge(axes[a].entries[idx[a]]);
-                continue;
-            }
-            const SweepCase& sc = axes[a].cases[idx[a]];
-            c.values.merge(sc.values);
-            c.reference.merge(sc.reference);
-            c.tags[axes[a].key] = sc.name;
-            for (const auto& [k, v] : sc.tags.items()) c.tags[k] = v;
-        }
-        configs.push_back(c);
-        size_t a = axes.size();
-        while (a > 0 && ++idx[a - 1] == axes[a - 1].values.size()) idx[--a] = 0;
-        if (a == 0) break;
+    for (size_t a = axes.size(), rest = index; a-- > 0;) {
+        idx[a] = rest % axes[a].values.size();
+        rest /= axes[a].values.size();
     }
+    for (size_t a = 0; a < axes.size(); ++a) {
+        c.sweep[axes[a].key] = typed(axes[a].values[idx[a]]);
+        if (axes[a].cases.empty()) {
+            c.values.merge(axes[a].entries[idx[a]]);
+            continue;
+        }
+        const SweepCase& sc = axes[a].cases[idx[a]];
+        c.values.merge(sc.values);
+        c.reference.merge(sc.reference);
+        c.tags[axes[a].key] = sc.name;
+        for (const auto& [k, v] : sc.tags.items()) c.tags[k] = v;
+    }
+    return c;
+}
+
+Configurations Experiment::configurations() const {
+    const Configurations configs(*this);
     // Validate every configuration now, so a bad value fails before any row is written (the reference scene
-    // must be valid too).
-    for (const auto& c : configs) {
+    // must be valid too). One at a time: nothing of a resolved scene is kept.
+    const auto start = std::chrono::steady_clock::now();
+    auto last = start;
+    bool reported = false;
+    for (size_t i = 0; i < configs.size(); ++i) {
+        const Configuration c = configs[i];
         scene::Values all = c.values;
         all.merge(c.reference);
         if (scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
             throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
+        if ((i & 1023) == 0 || i + 1 == configs.size()) {
+            const auto now = std::chrono::steady_clock::now();
+            if (now - last >= std::chrono::seconds(1) || (reported && i + 1 == configs.size())) {
+                std::cerr << "hilite: " << path << ": validated " << i + 1 << " of " << configs.size()
+                          << " configurations\n";
+                last = now;
+                reported = true;
+            }
+        }
     }
     return configs;
 }

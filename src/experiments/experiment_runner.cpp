@@ -69,10 +69,11 @@ ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backe
 
 ExperimentRunner::~ExperimentRunner() = default;
 
-void ExperimentRunner::probeAll(const std::vector<Configuration>& configs, int shardK, int shardN) {
+void ExperimentRunner::probeAll(const Configurations& configs, int shardK, int shardN) {
     std::set<std::string> seen;
-    for (const Configuration& c : configs) {
-        if (c.index % shardN != shardK - 1 || !c.values.given("brdf")) continue;
+    for (size_t i = size_t(shardK - 1); i < configs.size(); i += size_t(shardN)) {  // this shard's only
+        const Configuration c = configs[i];
+        if (!c.values.given("brdf")) continue;
         // Only the values the probe depends on decide whether a configuration needs its own probe.
         std::string key;
         for (const char* name : {"brdf", "light", "reference"}) key += c.values.text(name) + "\n";

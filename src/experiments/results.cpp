@@ -135,16 +135,13 @@ std::string whatDiffers(const nlohmann::json& row, const Configuration& c) {
 }  // namespace
 
 void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file, const Experiment& e,
-               const std::vector<Configuration>& configs) {
-    std::map<long, const Configuration*> byIndex;
-    for (const auto& c : configs) byIndex[c.index] = &c;
+               const Configurations& configs) {
     for (size_t i = 0; i < rows.size(); ++i) {
         const nlohmann::json& r = rows[i];
         const long index = r["config"].get<long>();
         const std::string at = file + ":" + std::to_string(i + 1) + ": row " + std::to_string(i + 1) + " (configuration " +
                                std::to_string(index) + ")";
-        const auto it = byIndex.find(index);
-        if (it == byIndex.end())
+        if (index < 0 || size_t(index) >= configs.size())
             throw InputError(at + ": the experiment '" + e.path + "' has only " + std::to_string(configs.size()) +
                              " configurations: these results are of another experiment (run without --resume, or "
                              "into another folder)");
@@ -152,9 +149,10 @@ void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file,
         if (fp == r.end() || !fp->is_string())
             throw InputError(at + ": fingerprint: the row has none (written by an older hilite): its configuration "
                                   "cannot be checked; run without --resume, or into another folder");
-        const std::string now = fingerprint(e, *it->second);
+        const Configuration c = configs[size_t(index)];
+        const std::string now = fingerprint(e, c);
         if (fp->get<std::string>() == now) continue;
-        const std::string diff = whatDiffers(r, *it->second);
+        const std::string diff = whatDiffers(r, c);
         throw InputError(at + (diff.empty() ? " was measured with another configuration (fingerprint " +
                                                   fp->get<std::string>() + ", the experiment now gives " + now + ")"
                                             : diff) +
@@ -230,7 +228,7 @@ void ResultsWriter::writeAll(const std::string& dir, const std::vector<std::stri
 }
 
 ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::string>& columns, bool resume,
-                             const Experiment& e, const std::vector<Configuration>& configs)
+                             const Experiment& e, const Configurations& configs)
     : m_columns(columns), m_dir(dir) {
     std::vector<nlohmann::json> kept;
     if (resume) {

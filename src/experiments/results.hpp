@@ -17,6 +17,7 @@
 namespace hilite::experiments {
 
 struct Configuration;
+class Configurations;
 struct Experiment;
 
 /// Reads the complete rows of a results.jsonl, streamed (no size cap). A torn last line (no newline: a kill
@@ -44,7 +45,7 @@ std::string fingerprint(const Experiment& e, const Configuration& c);
 /// names, by fingerprint. Throws InputError naming file:line, the configuration and, where a row column
 /// shows it, the value that differs ("... was measured with roughness = 0.1, the experiment now says 0.2").
 void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file, const Experiment& e,
-               const std::vector<Configuration>& configs);
+               const Configurations& configs);
 
 class ResultsWriter {
 public:
@@ -52,7 +53,7 @@ public:
     /// both files from them, by rename) and reports their configs in done(); otherwise starts empty.
     /// Kept rows must pass checkRows against `configs`.
     ResultsWriter(const std::string& dir, const std::vector<std::string>& columns, bool resume, const Experiment& e,
-                  const std::vector<Configuration>& configs);
+                  const Configurations& configs);
     ResultsWriter(const ResultsWriter&) = delete;
     ResultsWriter& operator=(const ResultsWriter&) = delete;
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace hilite::scene {
 
@@ -301,10 +302,15 @@ const std::vector<Param>& registry() {
 }
 
 const Param* find(const std::string& name) {
-    const std::string n = normalize(name);
-    for (const Param& p : registry())
-        if (p.name == n) return &p;
-    return nullptr;
+    // A map, not a scan: resolve() looks up every parameter, and validating 10^6 configurations resolves each.
+    static const std::unordered_map<std::string, const Param*> byName = [] {
+        std::unordered_map<std::string, const Param*> m;
+        for (const Param& p : registry()) m.emplace(p.name, &p);
+        return m;
+    }();
+    auto it = byName.find(name);
+    if (it == byName.end()) it = byName.find(normalize(name));
+    return it == byName.end() ? nullptr : it->second;
 }
 
 std::vector<std::string> names(Table t) {
@@ -347,11 +353,11 @@ std::string check(const Param& p, const std::string& text) {
         case Kind::Number: {
             if (!p.automatic.empty() && text == p.automatic) break;
             const double v = number(text, err);
+            if (err.empty() && inRange(v)) break;  // the words only for a refusal: check() runs per configuration
             const std::string range = rangeText(p.lo, p.hi, p.openLo, p.openHi);
             const std::string either = p.automatic.empty() ? "" : p.automatic + " or ";
             if (!err.empty() && !either.empty()) err = "expected " + either + "a number in " + range + " (got '" + text + "')";
-            else if (err.empty() && !inRange(v))
-                err = "must be " + either + "a finite number in " + range + " (got " + fmt(v) + ")";
+            else if (err.empty()) err = "must be " + either + "a finite number in " + range + " (got " + fmt(v) + ")";
             break;
         }
         case Kind::Integer: {
