@@ -32,6 +32,7 @@ struct Case {
     std::string args;    ///< hilite's arguments; {d} stands for the scratch folder
     int code;            ///< the exit code expected
     std::string needle;  ///< what the one-line message must contain ({d} replaced too)
+    std::string env = "";  ///< NAME=VALUE set for this case only ("": none)
 };
 
 std::string subst(std::string s, const std::string& dir) {
@@ -87,6 +88,10 @@ struct Scratch : TempDir {
         write("ok.brdf", kBrdf);
         write("ok.csv", "theta_h_deg, D\n0, 10\n10, 5\n20, 1\n40, 0\n");
         write("tiny.toml", kSmall);
+        write("brdfexp.toml", "[scene.material]\nbrdf = \"ok.brdf\"\n[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 30]\n");
+        write("fov0.toml", std::string(kSmall) + "[[sweep]]\nkey = \"camera.fov\"\nvalues = [\"auto\", 0]\n");
+        write("fovword.toml", std::string(kSmall) + "[[sweep]]\nkey = \"camera.fov\"\nvalues = [\"automatic\"]\n");
+        write("elevword.toml", std::string(kSmall) + "[[sweep]]\nkey = \"camera.elevation\"\nrange = [-10, 10, 10]\n");
         write("existing.png", "not really a png, but it must survive");
         write("file.txt", "a regular file");
         fs::create_directories(path / "dir");
@@ -109,8 +114,8 @@ std::vector<Case> flagCases() {
         {"--azimuth", {"nan", "inf", "''", "x"}},
         {"--size", {"0", "-5", "16385", "1.5", "10x", "x10", "''", "1e9"}},
         {"--bump-seed", {"9007199254740993", "-1", "1.5", "''", "1e300"}},
-        {"--fov", {"180", "-1", "nan", "''"}},
-        {"--elevation", {"-30", "nan", "91", "''"}},
+        {"--fov", {"180", "-1", "nan", "''", "0", "-0", "automatic", "Auto", "auto,30"}},  // 0 once meant automatic
+        {"--elevation", {"-30", "nan", "91", "''", "-0.001", "AUTO", "default"}},
         {"--threshold", {"-0.5", "2", "nan", "''"}},
         {"--model", {"bogus", "''", "GGX "}},
         {"--fresnel", {"bogus", "''"}},
@@ -127,6 +132,10 @@ std::vector<Case> flagCases() {
     cases.push_back({"run {d}/tiny.toml --shard 1/2x -o {d}/sh", 2, "--shard"});
     cases.push_back({"run {d}/tiny.toml --shard 0/0 -o {d}/sh", 2, "--shard"});
     cases.push_back({"run ''", 2, "empty experiment name"});
+    // A sweep takes what the flag takes: "auto" or a number in range; 0 is no longer a way to say automatic.
+    cases.push_back({"run {d}/fov0.toml -o {d}/f", 2, "fov0.toml:10: camera.fov: must be auto or a finite number in (0, 179] (got 0)"});
+    cases.push_back({"run {d}/fovword.toml -o {d}/f", 2, "fovword.toml:10: camera.fov: expected auto or a number in (0, 179] (got 'automatic')"});
+    cases.push_back({"run {d}/elevword.toml -o {d}/f", 2, "elevword.toml:10: sweep.range: must be auto or a finite number in [0, 90] (got -10)"});
     cases.push_back({"run {d}/tiny.toml --gl-backend bogus -o {d}/gb", 2, "bogus"});
     return cases;
 }
@@ -158,6 +167,9 @@ std::vector<Case> sceneCases(Scratch& s) {
         {"[material]\nfresnel = true\n", ":2"},
         {"[camera]\nfov = -1\n", ":2"},
         {"[camera]\nelevation = -30\n", ":2"},
+        {"[camera]\nfov = 0\n", ":2: camera.fov"},
+        {"[camera]\nfov = \"automatic\"\n", ":2: camera.fov"},
+        {"[camera]\nelevation = \"Auto\"\n", ":2: camera.elevation"},
         {"[measurement]\nthreshold = 2\n", ":2"},
     };
     for (size_t i = 0; i < files.size(); ++i) {
@@ -191,6 +203,17 @@ std::vector<Case> brdfCases(Scratch& s) {
     cases.push_back({"measure --size 32 --brdf {d}/ok.brdf --param alpha=100", 2, "alpha"});
     cases.push_back({"measure --size 32 --brdf {d}/ok.brdf --param beta=1", 2, "beta"});
     cases.push_back({"measure --size 32 --brdf {d}/ok.brdf --param alpha", 2, "--param"});
+    // The shader probe's child killed by a signal (a GL driver crash, made by a test hook): exit 2 naming the
+    // file, the signal and the child's last line (was: an empty reason).
+    cases.push_back({"measure --size 32 --brdf {d}/ok.brdf", 2,
+                     "{d}/ok.brdf: the shader probe (a child process compiling and drawing the shader) was killed by "
+                     "signal 11 (SIGSEGV, Segmentation fault): the GL driver crashed on this shader; its last output: "
+                     "'test: simulated shader compiler crash'",
+                     "HILITE_TEST_PROBE_SIGNAL=11"});
+    cases.push_back({"measure --size 32 --brdf {d}/ok.brdf", 2, "killed by signal 6 (SIGABRT", "HILITE_TEST_PROBE_SIGNAL=6"});
+    cases.push_back({"render --size 32 --brdf {d}/ok.brdf -o {d}/new.png", 2, "{d}/ok.brdf: the shader probe",
+                     "HILITE_TEST_PROBE_SIGNAL=6"});
+    cases.push_back({"run {d}/brdfexp.toml -o {d}/probe", 2, "{d}/ok.brdf: the shader probe", "HILITE_TEST_PROBE_SIGNAL=9"});
     return cases;
 }
 
@@ -284,7 +307,11 @@ TEST_CASE("cli::hostile every case is refused with one line naming the flag or f
     for (const Case& c : cases) {
         const std::string args = subst(c.args, s.path.string()), needle = subst(c.needle, s.path.string());
         CAPTURE(args);
+        CAPTURE(c.env);
+        const auto eq = c.env.find('=');
+        if (!c.env.empty()) setenv(c.env.substr(0, eq).c_str(), c.env.substr(eq + 1).c_str(), 1);
         const Result r = hilite(args);
+        if (!c.env.empty()) unsetenv(c.env.substr(0, eq).c_str());
         CAPTURE(r.out);
         CHECK(r.code == c.code);
         CHECK(lines(r.out) == 1);  // one line: no table begun, no partial output
@@ -299,7 +326,34 @@ TEST_CASE("cli::hostile stdout that cannot be written is a failure, not exit 0")
     CHECK(hilite("measure --size 32 --incidence 30 --json >/dev/full").code == 3);
     CHECK(hilite("brdf albedo --model ggx --json >/dev/full").code == 3);
     CHECK(hilite("explain >/dev/full").code == 3);
+    // Help and version too: text that never arrived is not a success.
+    for (const char* cmd : {"--help", "--version", "measure --help", "render --help", "run --help", "merge --help",
+                            "brdf albedo --help", "explain --help"}) {
+        CAPTURE(cmd);
+        const Result full = hilite(std::string(cmd) + " >/dev/full");
+        CHECK(full.code == 3);  // (its message goes to /dev/full too: the helper joins stderr to stdout)
+        CHECK(hilite(std::string(cmd) + " >/dev/null").code == 0);
+    }
     CHECK(hilite("measure --size 32 --incidence 30 >/dev/null").code == 0);
+}
+
+TEST_CASE("cli::hostile automatic is the word auto; a number is taken literally") {
+    TempDir d("hilite-auto");
+    d.write("fov.toml", "[scene.camera]\nsize = \"32\"\n[[sweep]]\nkey = \"camera.fov\"\nvalues = [\"auto\", 20]\n");
+    const Result run = hilite("run " + (d / "fov.toml") + " -o " + (d / "out"));
+    CAPTURE(run.out);
+    REQUIRE(run.code == 0);
+    const std::string rows = slurp(d / "out/results.jsonl");
+    CHECK(rows.find("\"framing\":\"automatic\"") != std::string::npos);  // auto: automatic framing
+    CHECK(rows.find("\"framing\":\"fixed\"") != std::string::npos);      // 20: a fixed field of view
+    CHECK(hilite("measure --size 32 --fov auto").code == 0);
+    // Elevation 0 is the camera in the plane: a valid (black) view, said so in a warning; not the default.
+    const Result grazing = hilite("render --size 16 --view photo --elevation 0 -o " + (d / "e0.png"));
+    CHECK(grazing.code == 0);
+    CHECK(grazing.out.find("warning: --elevation 0: the camera lies in the plane") != std::string::npos);
+    const Result automatic = hilite("render --size 16 --view photo --elevation auto -o " + (d / "ea.png"));
+    CHECK(automatic.code == 0);
+    CHECK(automatic.out.find("warning") == std::string::npos);
 }
 
 TEST_CASE("cli::hostile an input larger than the cap is refused with the cap named") {
