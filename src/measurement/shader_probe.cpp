@@ -101,7 +101,8 @@ std::string childError(const std::string& err) {
 std::string lastLine(const std::string& err) {
     size_t end = err.size();
     while (end > 0 && std::isspace(static_cast<unsigned char>(err[end - 1]))) --end;
-    const size_t begin = err.rfind('\n', end == 0 ? 0 : end - 1);
+    if (end == 0) return "";
+    const size_t begin = err.rfind('\n', end - 1);
     std::string line = err.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1));
     for (char& c : line)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';

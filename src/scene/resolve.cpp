@@ -298,7 +298,14 @@ Resolved resolve(const Values& values, Purpose purpose) {
     r.shaderTimeoutS = in.number("shader_timeout");
     if (in.given("brdf")) {
         auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(in.text("brdf")));
-        for (const auto& a : values.list("param")) brdf_file::assign(*file, a.text);
+        for (const auto& a : values.list("param")) {
+            try {
+                brdf_file::assign(*file, a.text);
+            } catch (const InputError& e) {  // from a scene or experiment file: its line first, then the .brdf's
+                if (a.origin.empty()) throw;
+                throw InputError(a.origin + ": " + e.what());
+            }
+        }
         s.brdfFile = std::move(file);
     }
     s.light.azimuthDeg = in.number("azimuth");
