@@ -48,7 +48,7 @@ struct LobeSurvey {
     std::vector<dvec3> directions;   ///< and directions
 };
 
-/// Azimuths of the survey grid (36 rings x 72: about 2600 twin evaluations, plus the peak's climbs).
+/// Azimuths of the survey grid (29 rings x 72: about 2100 twin evaluations, plus the peak's climbs).
 constexpr int kSurveyAzimuths = 72;
 
 /// The survey of a scene with a CPU twin (InputError otherwise), for the region at `frac` of the peak. The
