@@ -13,8 +13,14 @@ namespace hilite {
 
 namespace {
 
-std::string kindOf(mode_t m) {
+std::string mib(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
+
+}  // namespace
+
+std::string fileKind(mode_t m) {
+    if (S_ISREG(m)) return "a regular file";
     if (S_ISDIR(m)) return "a directory";
+    if (S_ISLNK(m)) return "a symlink (not followed: name the file itself)";
     if (S_ISFIFO(m)) return "a FIFO";
     if (S_ISCHR(m)) return "a character device";
     if (S_ISBLK(m)) return "a block device";
@@ -22,17 +28,13 @@ std::string kindOf(mode_t m) {
     return "not a regular file";
 }
 
-std::string mib(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
-
-}  // namespace
-
 void requireRegularFile(const std::string& path, const std::string& what) {
     struct stat st {};
     if (path.empty()) throw InputError(what + ": empty file name");
     if (::stat(path.c_str(), &st) != 0)
         throw InputError(what + ": cannot read '" + path + "': " + std::strerror(errno));
     if (!S_ISREG(st.st_mode))
-        throw InputError(what + ": '" + path + "' is " + kindOf(st.st_mode) + ", not a regular file");
+        throw InputError(what + ": '" + path + "' is " + fileKind(st.st_mode) + ", not a regular file");
 }
 
 std::string readInputFile(const std::string& path, const std::string& what, std::size_t maxBytes) {
@@ -43,7 +45,7 @@ std::string readInputFile(const std::string& path, const std::string& what, std:
     struct stat st {};
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         ::close(fd);
-        throw InputError(what + ": '" + path + "' is " + kindOf(st.st_mode) + ", not a regular file");
+        throw InputError(what + ": '" + path + "' is " + fileKind(st.st_mode) + ", not a regular file");
     }
     std::string bytes;
     char buf[65536];

@@ -1,6 +1,7 @@
 #include "io/image_io.hpp"
 
 #include "core/error.hpp"
+#include "core/files.hpp"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_WRITE_NO_STDIO
@@ -41,17 +42,6 @@ void appendBytes(void* context, void* data, int size) {
 
 namespace {
 
-std::string kindOf(mode_t m) {
-    if (S_ISREG(m)) return "a regular file";
-    if (S_ISDIR(m)) return "a directory";
-    if (S_ISLNK(m)) return "a symlink (not followed: name the file itself)";
-    if (S_ISFIFO(m)) return "a FIFO";
-    if (S_ISCHR(m)) return "a character device";
-    if (S_ISBLK(m)) return "a block device";
-    if (S_ISSOCK(m)) return "a socket";
-    return "not a regular file";
-}
-
 std::string errnoText() { return std::strerror(errno); }
 
 /// Refuses an existing `path` that is anything but a regular file (lstat: a symlink is refused, not followed).
@@ -59,7 +49,7 @@ void requireReplaceable(const std::string& path, const std::string& flag) {
     struct stat st {};
     if (::lstat(path.c_str(), &st) != 0) return;  // absent: created
     if (!S_ISREG(st.st_mode))
-        throw InputError(flag + ": '" + path + "' is " + kindOf(st.st_mode) + "; an output replaces only a regular file");
+        throw InputError(flag + ": '" + path + "' is " + fileKind(st.st_mode) + "; an output replaces only a regular file");
 }
 
 void writeAll(int fd, const std::string& bytes, const std::string& path) {
@@ -109,7 +99,7 @@ void checkOutputDir(const std::string& dir, const std::string& flag) {
         existing = slash == std::string::npos ? "." : slash == 0 ? "/" : existing.substr(0, slash);
     }
     if (!S_ISDIR(st.st_mode))
-        throw InputError(flag + ": '" + existing + "' is " + kindOf(st.st_mode) + ", not a folder" +
+        throw InputError(flag + ": '" + existing + "' is " + fileKind(st.st_mode) + ", not a folder" +
                          (existing == dir ? "" : " (needed for '" + dir + "')"));
     if (access(existing.c_str(), W_OK) != 0)
         throw InputError(flag + ": cannot write to '" + existing + "': " + errnoText());
