@@ -21,6 +21,7 @@
 //   render/scene.hpp, render/renderer.hpp, gl/context.hpp   the scene, the renderer and the offscreen context
 //   brdf/params.hpp, brdf/terms.hpp, brdf/evaluate.hpp     the BRDF's parameters and its terms in double
 //   experiments/experiment.hpp    experiment files, their configurations and the runner
+//   experiments/run.hpp           runExperiment(RunOptions) and mergeShards(): what `hilite run` / `merge` do
 //
 // Minimal use (errors are hilite::InputError, a std::runtime_error with a one-line message):
 //   hilite::scene::Values values;
@@ -41,6 +42,7 @@
 #include "brdf/terms.hpp"
 #include "core/error.hpp"
 #include "experiments/experiment.hpp"
+#include "experiments/run.hpp"
 #include "gl/context.hpp"
 #include "measure/highlight.hpp"
 #include "measurement/measure_scene.hpp"

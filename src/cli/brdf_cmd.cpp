@@ -111,20 +111,7 @@ std::string describeFresnel(const brdf::Params& p) {
 /// The Fresnel of the flags: --spectral sets the mode; the mode must be one (not none).
 scene::Resolved resolveBrdf(const BrdfFlags& f) { return scene::resolve(commandValues(f.scene), scene::Purpose::Brdf); }
 
-brdf::Params fresnelParams(const BrdfFlags& f) {
-    scene::Values v = commandValues(f.scene);
-    if (f.spectral) {
-        if (!brdf::hasSpectralData(v.text("material")))
-            throw InputError("--spectral: measured spectra exist for --material copper and gold only");
-        if (v.given("fresnel") && v.text("fresnel") != "spectral")
-            throw InputError("--spectral: conflicts with --fresnel " + v.text("fresnel"));
-        v.set("fresnel", "spectral", "--spectral");
-    }
-    const brdf::Params p = scene::resolve(v, scene::Purpose::Brdf).scene.brdf;
-    if (p.fresnel == brdf::Fresnel::None)
-        throw InputError("--fresnel: give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
-    return p;
-}
+brdf::Params fresnelParams(const BrdfFlags& f) { return scene::resolveFresnel(commandValues(f.scene), f.spectral); }
 
 int runAlbedo(const BrdfFlags& f) {
     const scene::Resolved r = resolveBrdf(f);

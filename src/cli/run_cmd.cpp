@@ -4,18 +4,11 @@
 // joins them into what a single run writes.
 
 #include "cli/commands.hpp"
-#include "experiments/experiment.hpp"
-#include "core/error.hpp"
-#include "core/text.hpp"
-#include "experiments/results.hpp"
-#include "io/image_io.hpp"
+#include "experiments/run.hpp"
 
 #include <unistd.h>
 
-#include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -23,34 +16,11 @@ namespace hilite::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
-using experiments::Experiment;
-using experiments::ExperimentRunner;
-
 struct RunFlags {
     std::string experiment, out, shard;
     bool resume = false;
     std::string backend;
 };
-
-void parseShard(const std::string& s, int& k, int& n) {
-    k = 1, n = 1;
-    if (s.empty()) return;
-    const auto parts = split(s, '/');
-    const auto a = parts.size() == 2 ? parseNumber(parts[0]) : std::nullopt;
-    const auto b = parts.size() == 2 ? parseNumber(parts[1]) : std::nullopt;
-    if (!a || !b || *a != std::floor(*a) || *b != std::floor(*b) || !(*b >= 1 && *b <= 1e6) || *a < 1 || *a > *b)
-        throw InputError("--shard: expected K/N with 1 <= K <= N (got '" + s + "')");
-    k = int(*a), n = int(*b);
-}
-
-/// The output folder can be made or written, and the result files in it are replaceable (regular files).
-void checkResultFolder(const std::string& dir) {
-    io::checkOutputDir(dir, "-o");
-    if (!fs::is_directory(dir)) return;
-    for (const char* name : {"results.jsonl", "results.csv", "experiment.toml", "experiment.origin", "summary.md"})
-        io::checkWritable(dir + "/" + name, "-o");
-}
 
 void progress(size_t done, size_t total, double seconds) {
     static const bool tty = isatty(fileno(stderr));
@@ -62,41 +32,18 @@ void progress(size_t done, size_t total, double seconds) {
 }
 
 int runExperiment(const RunFlags& f) {
-    int shardK = 1, shardN = 1;
-    parseShard(f.shard, shardK, shardN);
-    if (f.experiment.empty()) throw InputError("run: empty experiment name (give a file, or a name in experiments/)");
-    const Experiment exp = experiments::loadExperiment(experiments::findExperiment(f.experiment));
-    const std::string dir = f.out.empty() ? "results/" + exp.name : f.out;
-    const auto configs = exp.configurations();  // validates every configuration before anything runs
-    ExperimentRunner runner(exp, f.backend);
-    runner.probeAll(configs, shardK, shardN);  // a .brdf that does not build or runs too long: nothing written
-    checkResultFolder(dir);
-    io::makeOutputDir(dir, "-o");  // only now: bad input leaves not even an empty folder behind
-    const io::FolderLock lock(dir, "-o");  // a second run or merge into this folder is refused, not mixed in
-    experiments::ResultsWriter writer(dir, runner.columns(), f.resume, exp, configs);
-    experiments::writeExperimentCopy(exp, dir);
-    // This shard's configurations only, each built when measured (10^6 held at once took 1.1 GB).
-    const size_t first = size_t(shardK - 1), stride = size_t(shardN);
-    size_t todo = 0;
-    for (size_t i = first; i < configs.size(); i += stride) todo += !writer.done().count(long(i));
-    const auto t0 = std::chrono::steady_clock::now();
-    size_t finished = 0;
-    for (size_t i = first; i < configs.size(); i += stride) {
-        if (writer.done().count(long(i))) continue;
-        writer.append(runner.measure(configs[i]));
-        progress(++finished, todo,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    writer.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (shardN > 1) {
-        std::cout << "shard " << shardK << "/" << shardN << ": " << finished << " rows in " << seconds << " s -> "
-                  << dir << "/results.jsonl (join the shards with hilite merge)\n";
+    experiments::RunOptions o;
+    experiments::parseShard(f.shard, o.shardK, o.shardN);
+    o.experiment = f.experiment, o.out = f.out, o.resume = f.resume, o.backend = f.backend;
+    o.progress = progress;
+    const experiments::RunSummary s = experiments::runExperiment(o);
+    if (!s.finalized) {
+        std::cout << "shard " << o.shardK << "/" << o.shardN << ": " << s.measured << " rows in " << s.seconds << " s -> "
+                  << s.dir << "/results.jsonl (join the shards with hilite merge)\n";
         return 0;
     }
-    runner.finalize(dir, experiments::readRows(dir + "/results.jsonl"), seconds);
-    std::cout << exp.name << ": " << configs.size() << " configurations (" << finished << " measured now) in "
-              << seconds << " s -> " << dir << "/summary.md\n";
+    std::cout << s.name << ": " << s.configurations << " configurations (" << s.measured << " measured now) in "
+              << s.seconds << " s -> " << s.dir << "/summary.md\n";
     return 0;
 }
 
@@ -105,50 +52,11 @@ struct MergeFlags {
     std::string out, backend;
 };
 
-/// Refuses shards whose experiments differ in what any configuration measures (before anything is written).
-void checkSameExperiment(const std::string& first, const Experiment& a, const experiments::Configurations& ca,
-                         const std::string& other) {
-    const Experiment b = experiments::loadExperimentCopy(other);
-    if (b.text == a.text) return;
-    const auto cb = b.configurations();
-    const std::string why = "merge: '" + other + "' and '" + first + "' are shards of different experiments";
-    if (ca.size() != cb.size())
-        throw InputError(why + " (" + std::to_string(cb.size()) + " and " + std::to_string(ca.size()) + " configurations)");
-    for (size_t i = 0; i < ca.size(); ++i)
-        if (experiments::fingerprint(b, cb[i]) != experiments::fingerprint(a, ca[i]))
-            throw InputError(why + " (configuration " + std::to_string(ca[i].index) + " differs)");
-}
-
 int runMerge(const MergeFlags& f) {
-    if (f.out.empty()) throw InputError("-o: merge needs an output folder");
-    for (const auto& s : f.shards) {
-        const std::string copy = s + "/experiment.toml";
-        if (!fs::exists(copy)) throw InputError("merge: '" + s + "' holds no experiment.toml (not a hilite run output)");
-    }
-    const Experiment exp = experiments::loadExperimentCopy(f.shards.front());
-    const auto configs = exp.configurations();
-    std::vector<nlohmann::json> rows;
-    for (const auto& s : f.shards) {
-        if (s != f.shards.front()) checkSameExperiment(f.shards.front(), exp, configs, s);
-        auto shardRows = experiments::readRows(s + "/results.jsonl");
-        experiments::checkRows(shardRows, s + "/results.jsonl", exp, configs);
-        for (auto& r : shardRows) rows.push_back(std::move(r));
-    }
-    std::set<long> seen;
-    for (const auto& r : rows)
-        if (!seen.insert(r["config"].get<long>()).second)
-            throw InputError("merge: configuration " + r["config"].dump() + " appears in more than one shard");
-    ExperimentRunner runner(exp, f.backend);  // checks the backend and [match] before anything is written
-    checkResultFolder(f.out);
-    io::makeOutputDir(f.out, "-o");
-    const io::FolderLock lock(f.out, "-o");
-    experiments::ResultsWriter::writeAll(f.out, runner.columns(), rows);
-    experiments::writeExperimentCopy(exp, f.out);
-    const size_t expected = configs.size();
-    runner.finalize(f.out, experiments::readRows(f.out + "/results.jsonl"), -1);
-    std::cout << "merged " << rows.size() << " of " << expected << " rows from " << f.shards.size() << " shards -> "
-              << f.out << "\n";
-    return rows.size() == expected ? 0 : 2;
+    const experiments::MergeSummary s = experiments::mergeShards(f.shards, f.out, f.backend);
+    std::cout << "merged " << s.rows << " of " << s.expected << " rows from " << s.shards << " shards -> " << s.dir
+              << "\n";
+    return s.rows == s.expected ? 0 : 2;
 }
 
 }  // namespace

@@ -45,6 +45,15 @@ std::vector<nlohmann::json> Session::measure(const scene::Resolved& r) {
     return rows;
 }
 
+std::optional<gl::Backend> Session::glBackend() const {
+    if (!m_context) return std::nullopt;
+    return m_context->info().backend;
+}
+
+void Session::makeCurrent() {
+    if (m_context) m_context->makeCurrent();
+}
+
 std::string Session::glRenderer() const { return m_context ? m_context->info().renderer : ""; }
 
 }  // namespace hilite::measurement

@@ -10,6 +10,7 @@
 #include "scene/resolve.hpp"
 
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -32,6 +33,11 @@ public:
     render::Renderer& rendererFor(const scene::Resolved& r);
     /// The GL renderer's description ("llvmpipe (LLVM 15.0.6, 256 bits)"), "" before the first GL render.
     std::string glRenderer() const;
+    /// The backend of the session's context; nullopt before the first GL render.
+    std::optional<gl::Backend> glBackend() const;
+    /// Makes the session's context current again (after another context, e.g. an experiment run's, was
+    /// made current in this process); nothing before the first GL render.
+    void makeCurrent();
 
 private:
     std::string m_backend;

@@ -32,7 +32,13 @@ std::string number(double v) {
 
 /// The hilite executable that runs the probe: this one, or (in a program linked against the library) the
 /// installed one.
+std::string& probeOverride() {
+    static std::string path;
+    return path;
+}
+
 std::string probeExecutable() {
+    if (!probeOverride().empty()) return probeOverride();
     char buf[4096];
     const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
     if (n <= 0) throw SystemError("shader probe: cannot find this executable (/proc/self/exe)");
@@ -110,6 +116,8 @@ std::string lastLine(const std::string& err) {
 }
 
 }  // namespace
+
+void setProbeExecutable(const std::string& path) { probeOverride() = path; }
 
 std::string probeFailure(const std::string& path, int status, const std::string& err) {
     const std::string tail = lastLine(err);

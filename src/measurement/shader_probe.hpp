@@ -23,6 +23,10 @@ void probeShader(const render::Scene& scene, const std::string& backend, double 
 /// `status` is a wait status (waitpid).
 std::string probeFailure(const std::string& path, int status, const std::string& err);
 
+/// The hilite executable that runs the probe from a process that is not hilite (the Python module: python3
+/// is /proc/self/exe there). "" restores the default: this executable when it is hilite, else the installed one.
+void setProbeExecutable(const std::string& path);
+
 /// What the child does (the hidden subcommand `hilite probe-shader`): compiles both outputs and renders the
 /// probe views; a failure is the usual one-line InputError.
 void runShaderProbe(render::Scene scene, gl::Backend backend);

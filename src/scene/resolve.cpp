@@ -348,6 +348,20 @@ gl::Backend backendOf(const std::string& name) {
     throw InputError("--gl-backend: unknown '" + name + "' (allowed: auto, osmesa, egl)");
 }
 
+brdf::Params resolveFresnel(Values v, bool spectral) {
+    if (spectral) {
+        if (!brdf::hasSpectralData(v.text("material")))
+            throw InputError("--spectral: measured spectra exist for --material copper and gold only");
+        if (v.given("fresnel") && v.text("fresnel") != "spectral")
+            throw InputError("--spectral: conflicts with " + v.where("fresnel") + " " + v.text("fresnel"));
+        v.set("fresnel", "spectral", "--spectral");
+    }
+    const brdf::Params p = resolve(v, Purpose::Brdf).scene.brdf;
+    if (p.fresnel == brdf::Fresnel::None)
+        throw InputError(v.where("fresnel") + ": give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
+    return p;
+}
+
 PinholeCamera viewCamera(const Resolved& r, View view, int width, int height) {
     const render::Scene& scene = r.scene;
     if (view == View::Measure) {

@@ -71,6 +71,11 @@ enum class Purpose { Measure, Render, Brdf };
 /// and the allowed values. Warnings (clamped roughness, a mirror) go to stderr once per process.
 Resolved resolve(const Values& values, Purpose purpose = Purpose::Measure);
 
+/// The Fresnel term `hilite brdf fresnel` and `strip` (and hilite.brdf.fresnel) evaluate: `spectral` sets
+/// --fresnel spectral (measured spectra: copper, gold only; a conflicting --fresnel is refused); the term must
+/// be one (a material or a --fresnel other than none). InputError naming the flag otherwise.
+brdf::Params resolveFresnel(Values values, bool spectral);
+
 /// The camera of the resolved view at the scene's incidence.
 PinholeCamera viewCamera(const Resolved& r, View view, int width, int height);
 /// The GL backend named by `name` (--gl-backend: "" = $HILITE_GL_BACKEND, else auto); InputError if unknown.

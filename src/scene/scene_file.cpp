@@ -5,7 +5,9 @@
 #include "core/text.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 namespace hilite::scene {
@@ -116,6 +118,75 @@ Values parseSceneToml(const std::string& text, const std::string& name) {
 }
 
 std::string readTextFile(const std::string& path, const std::string& what) { return readInputFile(path, what); }
+
+namespace {
+
+/// Whether `t` is a TOML number token as written (decimal integer or float): then it is written bare.
+bool tomlNumber(const std::string& t) {
+    static const std::regex number(R"(^[+-]?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][+-]?[0-9]+)?$)");
+    return std::regex_match(t, number);
+}
+
+std::string tomlString(const std::string& t) {
+    std::ostringstream out;
+    out << toml::value<std::string>(t);
+    return out.str();
+}
+
+/// A comma list whose items are all numbers as a TOML array; else "" (written as a string).
+std::string numberArray(const std::string& t) {
+    const auto parts = split(t, ',');
+    std::string out;
+    for (const auto& p : parts) {
+        if (!tomlNumber(p)) return "";
+        out += (out.empty() ? "" : ", ") + p;
+    }
+    return "[" + out + "]";
+}
+
+std::string tomlValue(const Param& p, const std::string& text) {
+    switch (p.kind) {
+        case Kind::Switch: return text == "true" ? "true" : "false";
+        case Kind::Number:
+        case Kind::Integer: return tomlNumber(text) ? text : tomlString(text);
+        case Kind::Rgb:
+        case Kind::Angles: {
+            if (tomlNumber(text)) return text;
+            const std::string a = text.find(',') != std::string::npos ? numberArray(text) : "";
+            return a.empty() ? tomlString(text) : a;
+        }
+        case Kind::Path:
+            return tomlString(text.empty() ? text : std::filesystem::absolute(text).lexically_normal().string());
+        default: return tomlString(text);
+    }
+}
+
+}  // namespace
+
+std::string sceneToml(const Values& values) {
+    std::ostringstream out;
+    out << "# hilite scene file: each key is the flag of the same name (hilite explain --part scene)\n";
+    bool first = true;
+    for (Table t : tables()) {
+        std::string body;
+        for (const Param& p : registry()) {
+            if (p.table != t) continue;
+            if (p.kind == Kind::List) {
+                const auto& list = values.list(p.name);
+                if (list.empty()) continue;
+                std::string items;
+                for (const auto& v : list) items += (items.empty() ? "" : ", ") + tomlString(v.text);
+                body += p.name + " = [" + items + "]\n";
+            } else if (values.given(p.name)) {
+                body += p.name + " = " + tomlValue(p, values.text(p.name)) + "\n";
+            }
+        }
+        if (body.empty()) continue;
+        out << (first ? "" : "\n") << "[" << toString(t) << "]\n" << body;
+        first = false;
+    }
+    return out.str();
+}
 
 Values loadSceneFile(const std::string& path) { return parseSceneToml(readTextFile(path, "--scene"), path); }
 

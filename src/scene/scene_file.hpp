@@ -16,6 +16,10 @@ namespace hilite::scene {
 /// and keys (with a did-you-mean suggestion), keys in the wrong table and values of the wrong type.
 Values parseSceneToml(const std::string& text, const std::string& name);
 Values loadSceneFile(const std::string& path);
+/// The TOML text of a scene file holding `values` (each given value in its table; numbers as numbers, flat
+/// lists as arrays, file names made absolute so the file reads the same from any folder). parseSceneToml of
+/// it gives the same values (tests/scene/test_scene_files.cpp).
+std::string sceneToml(const Values& values);
 /// The scene tables of an already parsed document (an experiment's [scene], a sweep case).
 Values sceneValues(const toml::table& doc, const std::string& name);
 /// One "table.key = value" (a sweep value) into `out`.

@@ -104,3 +104,40 @@ TEST_CASE("README's flag table is the registry's (hilite explain --part flags)")
     REQUIRE(b != std::string::npos);
     CHECK(readme.substr(a + begin.size(), b - a - begin.size()) == scene::markdownTable());
 }
+
+TEST_CASE("scene::sceneToml writes a file that reads back as the same values") {
+    scene::Values v;
+    v.set("model", "ggx");
+    v.set("roughness", "0.1");
+    v.set("f0", "0.9,0.6,0.3");
+    v.set("fresnel", "schlick");
+    v.set("incidence", "0:85:5");
+    v.set("size", "128x96");
+    v.set("fov", "auto");
+    v.set("reference", "true");
+    v.set("view", "photo");
+    v.set("elevation", "1e-3");
+    const std::string text = scene::sceneToml(v);
+    CHECK(text.find("[material]\nmodel = 'ggx'\nroughness = 0.1\n") != std::string::npos);
+    CHECK(text.find("f0 = [0.9, 0.6, 0.3]") != std::string::npos);
+    CHECK(text.find("reference = true") != std::string::npos);
+    CHECK(text.find("incidence = '0:85:5'") != std::string::npos);
+    const scene::Values back = scene::parseSceneToml(text, "back.toml");
+    for (const auto& [name, value] : v.given()) {  // the same text, or the same number (1e-3 reads back as 0.001)
+        const auto a = parseNumber(back.text(name)), b = parseNumber(value.text);
+        CHECK_MESSAGE((a && b ? *a == *b : back.text(name) == value.text), name);
+    }
+    CHECK(back.given().size() == v.given().size());
+    CHECK(scene::parameterColumns(scene::resolve(back)) == scene::parameterColumns(scene::resolve(v)));
+
+    // A file name is written absolute, so the file reads the same from any folder.
+    scene::Values p;
+    p.set("model", "tabulated");
+    p.set("ndf_table", "tables/x.csv");
+    const std::string pt = scene::sceneToml(p);
+    CHECK(pt.find("ndf_table = '/") != std::string::npos);
+    // A string with quotes and newlines stays one TOML string.
+    scene::Values q;
+    q.set("brdf", "we\"ird\nname.brdf");
+    CHECK(scene::parseSceneToml(scene::sceneToml(q), "q.toml").text("brdf").find("we\"ird\nname.brdf") != std::string::npos);
+}

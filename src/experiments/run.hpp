@@ -1,0 +1,45 @@
+#pragma once
+// Running an experiment into a result folder, and merging shards: what `hilite run` and `hilite merge` do,
+// as library calls (the CLI and the Python module's hilite.run are thin callers). Every input is checked
+// and every .brdf probed before the folder is made; the folder is locked while it is written; --resume and
+// merge prove the rows already there belong to the same experiment.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace hilite::experiments {
+
+struct RunOptions {
+    std::string experiment;       ///< a file, or the name of one shipped in experiments/
+    std::string out;              ///< "" = results/<experiment name>
+    bool resume = false;          ///< keep the completed rows already in `out`, run the rest
+    int shardK = 1, shardN = 1;   ///< configurations i with i mod N = K - 1
+    std::string backend;          ///< "" = $HILITE_GL_BACKEND, else auto
+    std::string outName = "-o";   ///< how messages name the output folder (the flag, or a keyword)
+    /// Called after each row (rows measured now, rows to measure now, seconds so far); may be empty.
+    std::function<void(size_t, size_t, double)> progress;
+};
+
+struct RunSummary {
+    std::string name, dir;   ///< the experiment's name and the folder written
+    size_t configurations = 0;  ///< in the whole experiment
+    size_t measured = 0;        ///< rows measured by this call (the rest were resumed, or other shards')
+    double seconds = 0;
+    bool finalized = false;     ///< plots and summary.md written (not for a shard of several)
+};
+
+/// "K/N" of --shard into k, n (1/1 for ""); InputError naming `name` otherwise.
+void parseShard(const std::string& text, int& k, int& n, const std::string& name = "--shard");
+/// Runs the experiment (InputError / SystemError as the CLI reports them).
+RunSummary runExperiment(const RunOptions& o);
+
+struct MergeSummary {
+    std::string dir;
+    size_t rows = 0, expected = 0, shards = 0;
+};
+/// Joins shard folders into `out` as a single run writes it; rows.size() < expected: some are missing.
+MergeSummary mergeShards(const std::vector<std::string>& shards, const std::string& out,
+                         const std::string& backend = "", const std::string& outName = "-o");
+
+}  // namespace hilite::experiments
