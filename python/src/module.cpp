@@ -213,6 +213,18 @@ void writeScene(const std::string& path, const Items& items) {
     io::writeFileAtomic(path, text);
 }
 
+/// An experiment run makes a GL context of its own: the module's is made current again afterwards, even
+/// when the run throws (a failure to do so surfaces at the next render).
+struct CurrentAgain {
+    measurement::Session& session;
+    ~CurrentAgain() {
+        try {
+            session.makeCurrent();
+        } catch (...) {
+        }
+    }
+};
+
 py::dict runExperiment(const std::string& experiment, const std::string& out, bool resume, const std::string& shard,
                        const std::string& backend) {
     experiments::RunSummary s;
@@ -222,16 +234,7 @@ py::dict runExperiment(const std::string& experiment, const std::string& out, bo
         experiments::parseShard(shard, o.shardK, o.shardN, "shard");
         o.experiment = experiment, o.out = out, o.resume = resume, o.backend = backend, o.outName = "out";
         worker().run([&](measurement::Session& session) {
-            // The run makes a context of its own; the module's is current again afterwards, even on failure.
-            struct Restore {
-                measurement::Session& s;
-                ~Restore() {
-                    try {
-                        s.makeCurrent();
-                    } catch (...) {
-                    }
-                }
-            } restore{session};
+            const CurrentAgain restore{session};
             s = experiments::runExperiment(o);
         });
     }
@@ -246,15 +249,7 @@ py::dict mergeShards(const std::vector<std::string>& shards, const std::string& 
     {
         py::gil_scoped_release release;
         worker().run([&](measurement::Session& session) {
-            struct Restore {
-                measurement::Session& s;
-                ~Restore() {
-                    try {
-                        s.makeCurrent();
-                    } catch (...) {
-                    }
-                }
-            } restore{session};
+            const CurrentAgain restore{session};
             s = experiments::mergeShards(shards, out, backend, "out");
         });
     }
