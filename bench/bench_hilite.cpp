@@ -6,14 +6,17 @@
 //   --benchmark_filter=EffectSet            shading cost of each effect set at 512^2
 //   --benchmark_filter=Sweep                configurations per second (the 90 x 4 sweep's measurements)
 //   --benchmark_filter=View                 GL float path against the CPU double path, same pixels, all cores
+//   --benchmark_filter=Session              the library route of the Python module: Values -> resolve -> Session
 
 #include "brdf/spectral.hpp"
 #include "measurement/measure_scene.hpp"
+#include "measurement/session.hpp"
 #include "measurement/tolerance.hpp"
 #include "gl/context.hpp"
 #include "render/cpu_view.hpp"
 #include "render/renderer.hpp"
 #include "render/shader_source.hpp"
+#include "scene/resolve.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -220,6 +223,39 @@ void BM_View(benchmark::State& state) {
                        : std::string("gl float"));
 }
 BENCHMARK(BM_View)->ArgsProduct({{128, 512}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// ---- The library route (what the Python module's hilite.measure takes) ----
+
+/// GGX 0.1, height-correlated Smith, Schlick F0 0.04 at 512x512, as text, the way Python hands it over.
+scene::Values sessionValues(const char* incidence) {
+    scene::Values v;
+    for (auto [name, text] : {std::pair{"model", "ggx"}, {"roughness", "0.1"}, {"geometry", "smith"},
+                              {"fresnel", "schlick"}, {"f0", "0.04"}, {"size", "512"}})
+        v.set(name, text);
+    v.set("incidence", incidence);
+    return v;
+}
+
+/// resolve + measureOne per iteration, the same scene each time: the warm case (context, program, survey cached).
+void BM_SessionMeasure(benchmark::State& state) {
+    const scene::Values values = sessionValues("60");
+    measurement::Session session;
+    nlohmann::json row = session.measureOne(scene::resolve(values));  // warm-up: context, compile, allocate
+    for (auto _ : state) row = session.measureOne(scene::resolve(values));
+    state.counters["renders"] = row["renders"].get<double>();  // 60 deg: two parts (the horizon strip), a view each
+    state.counters["components"] = row["components"].get<double>();
+}
+BENCHMARK(BM_SessionMeasure)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The 86-angle sweep (incidence 0:85:1) through Session::measure: 86 rows per iteration.
+void BM_SessionSweep86(benchmark::State& state) {
+    const scene::Values values = sessionValues("0:85:1");
+    measurement::Session session;
+    session.measure(scene::resolve(values));  // warm-up
+    for (auto _ : state) benchmark::DoNotOptimize(session.measure(scene::resolve(values)));
+    state.counters["rows/s"] = benchmark::Counter(86.0 * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SessionSweep86)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
