@@ -12,7 +12,7 @@ import tomllib
 
 import pytest
 
-hilite = pytest.importorskip("hilite", reason="the hilite module is not built (PYTHONPATH=<build>/python)")
+import hilite  # PYTHONPATH=<build>/python (ctest sets it)
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 MODELS = ["phong", "ggx"]
