@@ -1,0 +1,257 @@
+#include "brdf/merl.hpp"
+
+#include "brdf/evaluate.hpp"
+#include "core/error.hpp"
+#include "core/files.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace hilite::brdf::merl {
+
+const char* toString(Interpolation i) { return i == Interpolation::Nearest ? "nearest" : "multilinear"; }
+
+HalfDiff toHalfDiff(const dvec3& wi, const dvec3& wo) {
+    HalfDiff a;
+    const dvec3 h = glm::normalize(wi + wo);  // wi + wo is commutative bit for bit
+    const double r = std::sqrt(h.x * h.x + h.y * h.y);
+    // atan2 rather than BRDFRead's acos: the same angle, without acos's loss of digits near the peak (h ~ n).
+    a.thetaH = std::atan2(r, h.z);
+    a.phiH = std::atan2(h.y, h.x);
+    const double cp = r > 0 ? h.x / r : 1.0, sp = r > 0 ? h.y / r : 0.0;
+    // d of the lexicographically smaller direction, so swapping wi and wo changes no bit (reciprocity exactly;
+    // the other direction's d differs by 180 deg in phi_d, which the fold removes).
+    const bool iFirst = wi.x < wo.x || (wi.x == wo.x && (wi.y < wo.y || (wi.y == wo.y && wi.z <= wo.z)));
+    const dvec3& v = iFirst ? wi : wo;
+    // BRDFRead: rotate by -phi_h about n, then by -theta_h about the bitangent (0, 1, 0).
+    const double tx = v.x * cp + v.y * sp, ty = -v.x * sp + v.y * cp, tz = v.z;
+    const dvec3 d{tx * h.z - tz * r, ty, tx * r + tz * h.z};
+    a.thetaD = std::atan2(std::sqrt(d.x * d.x + d.y * d.y), d.z);
+    a.phiD = std::atan2(d.y, d.x);
+    return a;
+}
+
+void fromHalfDiff(double thetaH, double thetaD, double phiD, dvec3& wi, dvec3& wo) {
+    const double sd = std::sin(thetaD), cd = std::cos(thetaD), sh = std::sin(thetaH), ch = std::cos(thetaH);
+    const double dx = sd * std::cos(phiD), dy = sd * std::sin(phiD), dz = cd;
+    // d rotated by +theta_h about the bitangent (phi_h = 0); wo's d is wi's mirrored about the half vector.
+    wi = dvec3{dx * ch + dz * sh, dy, -dx * sh + dz * ch};
+    wo = dvec3{-dx * ch + dz * sh, -dy, dx * sh + dz * ch};
+}
+
+double thetaHalfCoord(double thetaH) {
+    if (thetaH <= 0.0) return 0.0;
+    return std::sqrt(thetaH / (kPi / 2)) * kThetaHBins;
+}
+double thetaDiffCoord(double thetaD) { return thetaD / (kPi / 2) * kThetaDBins; }
+double phiDiffCoord(double phiD) {
+    if (phiD < 0.0) phiD += kPi;  // reciprocity: f is unchanged under phi_d -> phi_d + pi (BRDFRead)
+    return phiD / kPi * kPhiDBins;
+}
+double thetaHalfAt(double u) {
+    const double s = u / kThetaHBins;
+    return s * s * (kPi / 2);
+}
+double thetaDiffAt(double u) { return u / kThetaDBins * (kPi / 2); }
+double phiDiffAt(double u) { return u / kPhiDBins * kPi; }
+
+int nearestBin(double u, int bins) {
+    if (!(u > 0.0)) return 0;  // also NaN
+    return u >= bins ? bins - 1 : std::min(int(u), bins - 1);
+}
+
+std::size_t flatIndex(int iThetaH, int iThetaD, int iPhiD) {
+    return std::size_t(iPhiD) + std::size_t(kPhiDBins) * (std::size_t(iThetaD) + std::size_t(kThetaDBins) * iThetaH);
+}
+
+AxisWeights axisWeights(double u, int bins, bool wrap) {
+    AxisWeights w;
+    const double s = u - 0.5;  // in units of bins from the first centre
+    if (wrap) {
+        const double f = std::floor(s);
+        w.t = s - f;
+        const int lo = int(f);
+        w.lo = ((lo % bins) + bins) % bins;
+        w.hi = (w.lo + 1) % bins;
+        return w;
+    }
+    if (!(s > 0.0)) return w;  // before the first centre (or NaN): the edge bin
+    if (s >= bins - 1) {
+        w.lo = w.hi = bins - 1;
+        return w;
+    }
+    w.lo = int(s);
+    w.hi = w.lo + 1;
+    w.t = s - w.lo;
+    return w;
+}
+
+namespace {
+
+/// The weighted sum over the bins a lookup uses, and the weight that fell on bins with data.
+struct Gathered {
+    dvec3 sum{0.0};
+    double weight = 0;
+};
+
+Gathered gather(const MeasuredBrdf& m, double thetaH, double thetaD, double phiD, Interpolation how) {
+    const double uh = thetaHalfCoord(thetaH), ud = thetaDiffCoord(thetaD), up = phiDiffCoord(phiD);
+    Gathered g;
+    if (how == Interpolation::Nearest) {
+        const std::size_t i = flatIndex(nearestBin(uh, kThetaHBins), nearestBin(ud, kThetaDBins), nearestBin(up, kPhiDBins));
+        if (m.hasData(i)) g = {m.bin(i), 1.0};
+        return g;
+    }
+    const AxisWeights h = axisWeights(uh, kThetaHBins, false), d = axisWeights(ud, kThetaDBins, false),
+                      p = axisWeights(up, kPhiDBins, true);
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+            for (int c = 0; c < 2; ++c) {
+                const double w = (a ? h.t : 1 - h.t) * (b ? d.t : 1 - d.t) * (c ? p.t : 1 - p.t);
+                if (w == 0.0) continue;
+                const std::size_t i = flatIndex(a ? h.hi : h.lo, b ? d.hi : d.lo, c ? p.hi : p.lo);
+                if (!m.hasData(i)) continue;
+                g.sum += w * m.bin(i);
+                g.weight += w;
+            }
+    return g;
+}
+
+}  // namespace
+
+dvec3 MeasuredBrdf::lookup(double thetaH, double thetaD, double phiD, Interpolation how) const {
+    const Gathered g = gather(*this, thetaH, thetaD, phiD, how);
+    // Renormalized over the bins with data: near the measured region's edge the value is the data's, not
+    // pulled toward 0 by bins that were never measured.
+    return g.weight > 0 ? g.sum / g.weight : dvec3(0.0);
+}
+
+double MeasuredBrdf::coverage(double thetaH, double thetaD, double phiD, Interpolation how) const {
+    return std::min(1.0, gather(*this, thetaH, thetaD, phiD, how).weight);
+}
+
+dvec3 MeasuredBrdf::evaluate(const dvec3& wi, const dvec3& wo, Interpolation how) const {
+    if (wi.z <= 0.0 || wo.z <= 0.0) return dvec3(0.0);
+    const HalfDiff a = toHalfDiff(wi, wo);
+    return lookup(a.thetaH, a.thetaD, a.phiD, how);
+}
+
+namespace {
+
+const char* kChannel[3] = {"red", "green", "blue"};
+
+std::string expectedSize() {
+    return std::to_string(kFileBytes) + " (a " + std::to_string(kHeaderBytes) + "-byte header and 3 x " +
+           std::to_string(kEntries) + " doubles)";
+}
+
+std::int32_t readInt32(const std::string& b, std::size_t at) {
+    std::uint32_t u = 0;
+    for (int k = 3; k >= 0; --k) u = (u << 8) | std::uint8_t(b[at + std::size_t(k)]);
+    std::int32_t v;
+    std::memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+double readDouble(const std::string& b, std::size_t at) {
+    std::uint64_t u = 0;
+    for (int k = 7; k >= 0; --k) u = (u << 8) | std::uint8_t(b[at + std::size_t(k)]);
+    double v;
+    std::memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+void putLittle(std::string& out, std::uint64_t u, int bytes) {
+    for (int k = 0; k < bytes; ++k) out.push_back(char((u >> (8 * k)) & 0xff));
+}
+
+}  // namespace
+
+MeasuredBrdf parse(const std::string& bytes, const std::string& path, const std::string& what) {
+    const std::string file = what + ": '" + path + "' ";
+    if (bytes.size() < kHeaderBytes)
+        throw InputError(file + "is " + std::to_string(bytes.size()) + " bytes, too short for a MERL header; a MERL file is " +
+                         expectedSize() + " bytes");
+    const std::int32_t dims[3] = {readInt32(bytes, 0), readInt32(bytes, 4), readInt32(bytes, 8)};
+    // Stricter than BRDFRead, which checks only the product: another order would index a different table.
+    if (dims[0] != kThetaHBins || dims[1] != kThetaDBins || dims[2] != kPhiDBins)
+        throw InputError(file + "has dimensions " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
+                         std::to_string(dims[2]) + "; a MERL file has 90 x 90 x 180 (theta_h x theta_d x phi_d)");
+    if (bytes.size() != kFileBytes)
+        throw InputError(file + "is " + std::to_string(bytes.size()) + " bytes, expected " + expectedSize() + ": " +
+                         (bytes.size() < kFileBytes ? "truncated" : "trailing bytes after the table"));
+    MeasuredBrdf m;
+    m.path = path;
+    m.raw.resize(3 * kEntries);
+    for (std::size_t i = 0; i < m.raw.size(); ++i) {
+        const double v = readDouble(bytes, kHeaderBytes + 8 * i);
+        if (!std::isfinite(v)) {
+            const std::size_t e = i % kEntries;
+            throw InputError(file + "has a" + std::string(std::isnan(v) ? " NaN" : "n infinite") + " entry in the " +
+                             kChannel[i / kEntries] + " plane (theta_h bin " + std::to_string(e / (kThetaDBins * kPhiDBins)) +
+                             ", theta_d bin " + std::to_string(e / kPhiDBins % kThetaDBins) + ", phi_d bin " +
+                             std::to_string(e % kPhiDBins) + "); entries are finite, negative for no data");
+        }
+        m.raw[i] = v;
+    }
+    for (std::size_t e = 0; e < kEntries; ++e) m.noData += !m.hasData(e);
+    if (m.noData == kEntries)
+        throw InputError(file + "has no data: every one of its " + std::to_string(kEntries) +
+                         " bins is negative (\"no data\") in some channel");
+    return m;
+}
+
+MeasuredBrdf read(const std::string& path, const std::string& what) {
+    return parse(readInputFile(path, what, kMaxReadBytes), path, what);
+}
+
+std::string encode(const MeasuredBrdf& table) {
+    std::string out;
+    out.reserve(kFileBytes);
+    for (int d : {kThetaHBins, kThetaDBins, kPhiDBins}) putLittle(out, std::uint32_t(d), 4);
+    for (double v : table.raw) {
+        std::uint64_t u;
+        std::memcpy(&u, &v, sizeof u);
+        putLittle(out, u, 8);
+    }
+    return out;
+}
+
+double rawFor(double f, int channel) {
+    const double s = kScale[channel];
+    double best = f / s;
+    for (double c : {std::nextafter(best, -HUGE_VAL), std::nextafter(best, HUGE_VAL)})
+        if (std::abs(c * s - f) < std::abs(best * s - f)) best = c;
+    return best;
+}
+
+MeasuredBrdf tabulate(const Params& p) {
+    if (p.anisotropic()) throw std::invalid_argument("merl::tabulate: a MERL table is isotropic");
+    MeasuredBrdf m;
+    m.raw.assign(3 * kEntries, kNoData);
+    for (int ih = 0; ih < kThetaHBins; ++ih)
+        for (int id = 0; id < kThetaDBins; ++id)
+            for (int ip = 0; ip < kPhiDBins; ++ip) {
+                dvec3 wi, wo;
+                fromHalfDiff(thetaHalfAt(ih + 0.5), thetaDiffAt(id + 0.5), phiDiffAt(ip + 0.5), wi, wo);
+                const std::size_t e = flatIndex(ih, id, ip);
+                if (wi.z <= 0.0 || wo.z <= 0.0) {
+                    ++m.noData;
+                    continue;
+                }
+                const dvec3 f = evaluate(p, wi, wo);
+                for (int c = 0; c < 3; ++c) {
+                    if (!std::isfinite(f[c]) || f[c] < 0.0)
+                        throw InputError("brdf tabulate: the model gives f = " + std::to_string(f[c]) + " in the " +
+                                         kChannel[c] + " channel at theta_h bin " + std::to_string(ih) +
+                                         ", theta_d bin " + std::to_string(id) + ", phi_d bin " + std::to_string(ip) +
+                                         "; a MERL table holds finite values >= 0");
+                    m.raw[std::size_t(c) * kEntries + e] = rawFor(f[c], c);
+                }
+            }
+    return m;
+}
+
+}  // namespace hilite::brdf::merl
