@@ -1,11 +1,12 @@
 // `hilite brdf`: the physics of the reflectance terms as numbers, computed in double on the CPU with the
 // full spectral tables (1 nm): directional-hemispherical reflectance vs theta (albedo), Fresnel vs theta,
-// the NDF's normalization, and the Fresnel colour strip of a material (PNG). A table by default; with
-// --json one JSON object per line.
+// the NDF's normalization, the Fresnel colour strip of a material (PNG), and a model tabulated as a MERL
+// .binary file (brdf/merl.hpp). A table by default; with --json one JSON object per line.
 
 #include "brdf/bihemispherical.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
+#include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "cli/commands.hpp"
@@ -34,7 +35,7 @@ struct BrdfFlags {
     bool spectral = false;                              ///< fresnel, strip: --spectral
     std::string roughness = "0.02,0.05,0.1,0.2,0.5,1";  ///< normalization: the sweep
     std::string exponent = "1,10,100,1000,10000";
-    std::string png;  ///< strip: -o
+    std::string png;  ///< strip (PNG), tabulate (MERL .binary): -o
 };
 
 /// "0.1", "0.1,0.2" or START:STOP:STEP (inclusive), each value finite in [lo, hi].
@@ -204,6 +205,23 @@ int runStrip(const BrdfFlags& f) {
     return 0;
 }
 
+/// tabulate: every check (the parameters, isotropy, -o) before the table is computed and written.
+int runTabulate(const BrdfFlags& f) {
+    const scene::Values given = commandValues(f.scene);
+    const brdf::Params p = resolveBrdf(f).scene.brdf;
+    if (p.anisotropic())
+        throw InputError(given.where("roughness_y") + ": a MERL table is isotropic (90 x 90 x 180 over theta_h, "
+                                                      "theta_d, phi_d); brdf tabulate takes isotropic models only");
+    if (f.png.empty()) throw InputError("-o: give the MERL .binary file to write");
+    io::checkWritable(f.png, "-o");
+    const brdf::merl::MeasuredBrdf table = brdf::merl::tabulate(p);
+    io::writeFileAtomic(f.png, brdf::merl::encode(table));
+    std::cout << "wrote " << f.png << ": MERL table " << brdf::merl::kThetaHBins << " x " << brdf::merl::kThetaDBins
+              << " x " << brdf::merl::kPhiDBins << " (theta_h, theta_d, phi_d) at the bin centres, "
+              << table.noData << " bins below the horizon stored as no data: " << p << "\n";
+    return 0;
+}
+
 /// A subcommand's flags: the registry parameters it reads, defaults of its own; the CPU uses the full 1 nm
 /// tables.
 std::shared_ptr<BrdfFlags> subcommandFlags(CLI::App& sub, const std::string& incidence, const std::string& size,
@@ -259,15 +277,23 @@ Action addBrdf(CLI::App& app) {
     strip->add_flag("--spectral", fs->spectral, kSpectralHelp);
     strip->add_option("-o,--output", fs->png, "PNG output (sRGB-encoded linear F)");
 
+    CLI::App* tabulate = app.add_subcommand("tabulate", "a built-in isotropic model as a MERL .binary table (CPU, double)");
+    auto ft = subcommandFlags(*tabulate, "", "", brdfParam);
+    tabulate->add_option("-o,--output", ft->png, "MERL .binary output (34,992,012 bytes)");
+    tabulate->footer("brdf::evaluate (lobe with F and G, diffuse) at every bin centre; bins whose centre puts a "
+                     "direction below the horizon hold -1 (no data).");
+
     app.footer(
         "Examples: hilite brdf fresnel --material copper --incidence 0:90:5\n"
         "          hilite brdf albedo --model ggx --roughness 0.3 --geometry smith --json\n"
         "          hilite brdf normalization --model beckmann --roughness 0.02,0.1,1\n"
-        "          hilite brdf strip --material gold -o gold.png");
+        "          hilite brdf strip --material gold -o gold.png\n"
+        "          hilite brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick -o ggx.binary");
     return [=] {
         if (albedo->parsed()) return runAlbedo(*fa);
         if (fresnel->parsed()) return runFresnel(*ff);
         if (normalization->parsed()) return runNormalization(*fn);
+        if (tabulate->parsed()) return runTabulate(*ft);
         return runStrip(*fs);
     };
 }

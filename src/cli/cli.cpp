@@ -42,7 +42,7 @@ int run(int argc, char** argv) {
     };
     add("render", "render the plane to PNG / PFM (measurement or photo view)", &addRender);
     add("measure", "measure the highlight: ellipse, aspect, eccentricity, per incidence angle", &addMeasure);
-    add("brdf", "the reflectance terms' physics: albedo, fresnel, normalization (tables / JSON), strip (PNG)", &addBrdf);
+    add("brdf", "the reflectance terms' physics: albedo, fresnel, normalization (tables / JSON), strip (PNG), tabulate (MERL)", &addBrdf);
     add("explain", "print the resolved scene, its active effects and the GLSL it compiles", &addExplain);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
