@@ -304,7 +304,9 @@ TEST_CASE("merl: bad files are refused in one line naming the file, the problem 
     CHECK(refusal(scratch("missing.binary")).find("cannot read") != std::string::npos);
 
     // Full-size files: a NaN and an infinity among valid entries, every entry negative, trailing bytes.
-    std::string good = merl::encode(ggxTable());
+    merl::MeasuredBrdf constant;  // not the GGX table: this case needs valid bytes, not a model (no tabulation)
+    constant.raw.assign(3 * merl::kEntries, 1500.0);
+    const std::string good = merl::encode(constant);
     const std::size_t at = merl::kHeaderBytes + 8 * (merl::kEntries + merl::flatIndex(3, 4, 5));  // green plane
     const std::string nan = scratch("nan.binary");
     const double q = std::numeric_limits<double>::quiet_NaN();
@@ -336,7 +338,13 @@ TEST_CASE("merl: bad files are refused in one line naming the file, the problem 
     // The good file reads back as written.
     const std::string ok = scratch("ok.binary");
     writeBytes(ok, good);
-    CHECK(merl::read(ok).raw == ggxTable().raw);
+    const merl::MeasuredBrdf back = merl::read(ok);
+    CHECK(back.raw == constant.raw);
+    CHECK(back.noData == 0);
+    const dvec3 f = back.evaluate({0, 0, 1}, sphericalDirectionDeg(40, 120));  // 1500 x the channel scales
+    CHECK(f.x == doctest::Approx(1.0));
+    CHECK(f.y == doctest::Approx(1.15));
+    CHECK(f.z == doctest::Approx(1.66));
     std::filesystem::remove_all(dir);
 }
 
