@@ -5,7 +5,7 @@ import os
 import numpy as np
 
 from . import _hilite
-from ._params import PARAMS, REGISTRY, InputError, is_sweep, items_of, list_texts, lookup, scalar_text, signature_doc
+from ._params import PARAMS, InputError, is_sweep, items_of, lookup, scalar_text, signature_doc
 
 
 def _scene_items(scene):

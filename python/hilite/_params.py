@@ -19,19 +19,9 @@ REGISTRY = _hilite.registry()
 PARAMS = {p["name"]: p for p in REGISTRY}
 
 
-def _did_you_mean(name, names):
-    best, score = None, 0.0
-    import difflib
-    for n in names:
-        s = difflib.SequenceMatcher(None, name, n).ratio()
-        if s > score:
-            best, score = n, s
-    return best if score >= 0.6 else None
-
-
 def unknown(name, allowed, what="keyword"):
     """The InputError for an unknown keyword, with a did-you-mean."""
-    hint = _did_you_mean(name, allowed)
+    hint = _hilite.did_you_mean(name, list(allowed))
     return InputError(f"{name}: unknown {what}" + (f" (did you mean '{hint}'?)" if hint else "") +
                       "; allowed: " + ", ".join(allowed))
 

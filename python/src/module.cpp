@@ -293,6 +293,7 @@ PYBIND11_MODULE(_hilite, m) {
         const scene::Param* p = scene::find(name);
         return p ? scene::check(*p, text) : std::string("unknown parameter");
     });
+    m.def("did_you_mean", &didYouMean, py::arg("word"), py::arg("candidates"));  // the CLI's own suggestion
     m.def("measure", &measureScenes, py::arg("scenes"));
     m.def("render", &renderScene, py::arg("items"), py::arg("maps"));
     m.def("fresnel", &fresnelOf, py::arg("items"), py::arg("spectral"));
