@@ -11,7 +11,8 @@ namespace hilite::brdf {
 /// f(wi, wo) = specular + diffuse for unit directions in the local frame (n = +z). Zero when either is
 /// below the horizon.
 dvec3 evaluate(const Params& p, const dvec3& wi, const dvec3& wo);
-/// The model's lobe with its Fresnel and geometry terms (0 for Model::None).
+/// The model's lobe with its Fresnel and geometry terms (0 for Model::None); a measured table's lookup when
+/// Params::measured is set (the table holds everything, so evaluateDiffuse is then 0).
 dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo);
 /// The diffuse term (0 for Diffuse::None).
 dvec3 evaluateDiffuse(const Params& p, const dvec3& wi, const dvec3& wo);

@@ -4,9 +4,13 @@
 #include "core/error.hpp"
 #include "core/files.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 namespace hilite::brdf::merl {
@@ -205,6 +209,25 @@ MeasuredBrdf parse(const std::string& bytes, const std::string& path, const std:
 
 MeasuredBrdf read(const std::string& path, const std::string& what) {
     return parse(readInputFile(path, what, kMaxReadBytes), path, what);
+}
+
+std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::string& what) {
+    struct Entry {
+        long long size = -1, mtimeNs = -1;
+        std::shared_ptr<const MeasuredBrdf> table;
+    };
+    static std::mutex mutex;
+    static std::map<std::string, Entry> cache;
+    struct stat st {};
+    const bool known = ::stat(path.c_str(), &st) == 0;
+    const long long size = known ? (long long)st.st_size : -1;
+    const long long mtime = known ? (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec : -1;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = cache.find(path); known && it != cache.end() && it->second.size == size && it->second.mtimeNs == mtime)
+        return it->second.table;
+    auto table = std::make_shared<const MeasuredBrdf>(read(path, what));  // throws before the cache changes
+    cache[path] = Entry{size, mtime, table};
+    return table;
 }
 
 std::string encode(const MeasuredBrdf& table) {

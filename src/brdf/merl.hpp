@@ -21,6 +21,7 @@
 #include "core/math.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,11 @@ MeasuredBrdf parse(const std::string& bytes, const std::string& path, const std:
 /// The reader's size cap: the input-file cap (core/files.hpp, 16 MiB) is below a MERL file (33.4 MiB), so this
 /// reader alone allows 64 MiB, twice a valid file, so a wrong size gets its exact message rather than the cap's.
 constexpr std::size_t kMaxReadBytes = std::size_t(64) << 20;
+
+/// read(), once per process per file: later calls with the same path return the table already read while the
+/// file's size and modification time are unchanged (a sweep resolves a scene per configuration; a table is
+/// 35 MB of doubles). Thread-safe.
+std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::string& what = "MERL file");
 
 /// The bytes of a MERL file holding `table` (header 90, 90, 180 and its raw entries, little-endian): the
 /// caller writes them (atomically, io::writeFileAtomic; brdf depends on core only).

@@ -1,5 +1,6 @@
 #include "brdf/params.hpp"
 
+#include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 
@@ -109,6 +110,7 @@ std::ostream& operator<<(std::ostream& os, Geometry g) { return os << toString(g
 std::ostream& operator<<(std::ostream& os, Diffuse d) { return os << toString(d); }
 
 std::ostream& operator<<(std::ostream& os, const Params& p) {
+    if (p.measured) return os << "measured=" << p.measured->path << " (MERL table, multilinear; no_data_bins=" << p.measured->noData << ")";
     os << "model=" << toString(p.model);
     if (usesExponent(p.model))
         os << " exponent=" << p.exponent;

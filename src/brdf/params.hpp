@@ -15,6 +15,9 @@ namespace hilite::brdf {
 
 struct Spectrum;  // brdf/spectral.hpp
 struct NdfTable;  // brdf/ndf_table.hpp
+namespace merl {
+struct MeasuredBrdf;  // brdf/merl.hpp
+}
 
 /// Specular model: a reflection lobe about the mirror direction, or a microfacet NDF of the half vector.
 enum class Model {
@@ -78,6 +81,10 @@ struct Params {
     dvec3 k{0.0, 0.0, 0.0};                    ///< conductor: extinction coefficient
     std::shared_ptr<const Spectrum> spectrum;  ///< spectral: the sampled metal (see brdf/spectral.hpp)
     std::shared_ptr<const NdfTable> ndfTable;  ///< tabulated: the normalized table (see brdf/ndf_table.hpp)
+    /// measured: a MERL table (brdf/merl.hpp) that is the whole BRDF (lobe with its F and G, and any diffuse):
+    /// when set, model, fresnel, geometry and diffuse are unused (resolve sets them to none) and evaluate()
+    /// returns the table's multilinear lookup.
+    std::shared_ptr<const merl::MeasuredBrdf> measured;
     Geometry geometry = Geometry::Implicit;
     Diffuse diffuse = Diffuse::None;
     dvec3 albedo{0.5, 0.5, 0.5};  ///< lambert / oren-nayar rho

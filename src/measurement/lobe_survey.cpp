@@ -87,7 +87,7 @@ LobeSurvey scannedLobe(const render::Scene& scene) {
 std::string keyOf(const render::Scene& s, double frac) {
     std::ostringstream key;
     key.precision(17);
-    key << s << " type=" << int(s.light.type) << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get()
+    key << s << " type=" << int(s.light.type) << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get() << " measured=" << s.brdf.measured.get()
         << " spectrum=" << s.brdf.spectrum.get() << " frac=" << frac;
     if (s.light.chartCenter) key << " centre=" << s.light.chartCenter->x << "," << s.light.chartCenter->y << "," << s.light.chartCenter->z;
     return key.str();

@@ -1,6 +1,7 @@
 #include "render/renderer.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "render/bumps.hpp"
 #include "core/error.hpp"
@@ -61,6 +62,14 @@ std::vector<std::string> activeEffects(const Scene& scene) {
     out.push_back(scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
                                                        : "directional light (E cos)");
     if (scene.surface.bumps) out.push_back(bumpEffect(scene));
+    if (scene.brdf.measured) {  // the table is the whole BRDF: no analytic term runs
+        const brdf::merl::MeasuredBrdf& m = *scene.brdf.measured;
+        std::ostringstream s;
+        s << "measured MERL table " << m.path << ": 90 x 90 x 180 bins (theta_h, theta_d, phi_d), multilinear "
+          << "between bin centres, " << m.noData << " bins without data (their weight renormalized away); no "
+          << "analytic lobe, Fresnel, geometry or diffuse term";
+        out.insert(out.begin(), s.str());
+    }
     if (scene.brdf.model == brdf::Model::Tabulated && scene.brdf.ndfTable) {  // What the table became
         const brdf::NdfTable& t = *scene.brdf.ndfTable;
         std::ostringstream s;

@@ -279,7 +279,14 @@ size_t ndfTableRows(const brdf::Params& p) {
 
 }  // namespace
 
+/// Until the GL twin of a measured table exists, a GL render of one would draw the empty dispatch (black).
+void refuseMeasured(const brdf::Params& p) {
+    if (p.measured)
+        throw InputError("--measured: the GL path has no lookup of a MERL table yet (use --renderer cpu or --reference)");
+}
+
 std::string effectKey(const brdf::Params& p, Output out) {
+    refuseMeasured(p);
     // The dispatch names every term and call (never a parameter value), so it identifies the program.
     return std::string(out == Output::Measure ? "measure" : "color") + "|" + std::to_string(spectralSamples(p)) + "|" +
            std::to_string(ndfTableRows(p)) + "|" + dispatchSource(p);
@@ -311,6 +318,7 @@ std::vector<const ShaderBlock*> closure(const std::vector<ShaderBlock>& blocks, 
 }
 
 ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
+    refuseMeasured(p);
     const auto blocks = termLibrary(dir);
     std::vector<std::string> names{"common"};
     const auto terms = programBlocks(p);

@@ -1,6 +1,7 @@
 #include "scene/registry.hpp"
 
 #include "brdf/materials.hpp"
+#include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/params.hpp"
 #include "core/text.hpp"
@@ -20,7 +21,8 @@ using brdf::Model;
 
 // ---- What a parameter applies to ----
 
-bool builtin(const Resolved& r) { return !r.scene.brdfFile; }
+bool builtin(const Resolved& r) { return !r.scene.brdfFile && !r.scene.brdf.measured; }
+bool measured(const Resolved& r) { return bool(r.scene.brdf.measured); }
 bool usesExponent(const Resolved& r) { return builtin(r) && brdf::usesExponent(r.scene.brdf.model); }
 bool usesRoughness(const Resolved& r) {
     const Model m = r.scene.brdf.model;
@@ -65,6 +67,8 @@ std::vector<Param> build() {
     add({"model", T::Material, K::Choice, "ggx", 0, 0, false, false, brdf::modelNames(), "", kModelHelp, "every scene",
          nullptr, "model", [](const Resolved& r) -> json {
              if (r.scene.brdfFile) return r.scene.brdfFile->path.substr(r.scene.brdfFile->path.rfind('/') + 1);
+             if (r.scene.brdf.measured)
+                 return "measured:" + r.scene.brdf.measured->path.substr(r.scene.brdf.measured->path.rfind('/') + 1);
              return brdf::toString(r.scene.brdf.model);
          }});
     add({"exponent", T::Material, K::Number, "1000", brdf::kMinExponent, brdf::kMaxExponent, false, false, {}, "",
@@ -117,6 +121,11 @@ std::vector<Param> build() {
          "tabulated: CSV of 'theta_h_deg, D' rows (theta_h from 0, increasing, <= 90; D >= 0), linear between rows, "
          "normalized so that int D (n.h) dw = 1 (the factor is reported as ndf_table_normalization)",
          "model tabulated", tabulated, "ndf_table", [](const Resolved& r) -> json { return r.scene.brdf.ndfTable->file; }});
+    add({"measured", T::Material, K::Path, "", 0, 0, false, false, {}, "",
+         "a MERL .binary table (90 x 90 x 180, Matusik 2003): the whole BRDF (lobe, F, G, diffuse), looked up "
+         "multilinearly; replaces --model and its terms (the row's model says measured:FILE; not with --model, "
+         "--brdf, --bumps)",
+         "every scene", measured, "measured", [](const Resolved& r) -> json { return r.scene.brdf.measured->path; }});
     add({"brdf", T::Material, K::Path, "", 0, 0, false, false, {}, "",
          "a BRDF Explorer .brdf file (analytic): its GLSL BRDF() replaces --model and its terms (only "
          "--tangent-angle still applies); no CPU twin, so measure frames blind and estimates its error from "

@@ -1,6 +1,7 @@
 #include "scene/resolve.hpp"
 
 #include "brdf/materials.hpp"
+#include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "core/error.hpp"
@@ -183,6 +184,11 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
 
 brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) {
     brdf::Params p;
+    if (in.given("measured"))  // the table is the whole BRDF: a named model (or NDF table) would go unused
+        for (const char* other : {"model", "ndf_table"})
+            if (in.given(other))
+                throw InputError(in.where(other) + ": not with " + in.where("measured") +
+                                 " (the MERL table is the whole BRDF: its lobe, F, G and diffuse)");
     p.model = *brdf::parseModel(in.text("model"));
     p.exponent = in.number("exponent");
     const bool usesRoughness = p.model != brdf::Model::None && !brdf::usesExponent(p.model);
@@ -219,6 +225,13 @@ brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) 
     p.albedo = in.rgb("albedo");
     p.sigmaDeg = in.number("sigma");
     resolveFresnel(in, p, spectralStepNm);
+    if (in.given("measured")) {
+        p.measured = brdf::merl::load(in.text("measured"), in.where("measured"));
+        p.model = brdf::Model::None;  // no analytic term runs: evaluate() and the shader use the table alone
+        p.fresnel = brdf::Fresnel::None;
+        p.diffuse = brdf::Diffuse::None;
+        p.roughnessY.reset();
+    }
     return p;
 }
 
@@ -243,6 +256,9 @@ void checkScene(const Reader& in, const render::Scene& s) {
         throw InputError(in.where("param") + ": only with --brdf FILE (built-in models take --exponent, --roughness, ...)");
     if (!s.surface.bumps) return;
     const std::string w = in.where("bumps");
+    if (s.brdf.measured)
+        throw InputError(w + ": the bump field's facets take a slope distribution; a measured table has none "
+                             "(drop --measured or --bumps)");
     if (s.brdfFile)
         throw InputError(w + ": the bump field's facets are mirrors with a known slope distribution; a .brdf file's "
                              "BRDF() has none (drop --brdf or --bumps)");
@@ -296,6 +312,8 @@ Resolved resolve(const Values& values, Purpose purpose) {
     render::Scene& s = r.scene;
     s.brdf = resolveBrdf(in, purpose, r.spectralStepNm);
     r.shaderTimeoutS = in.number("shader_timeout");
+    if (s.brdf.measured && in.given("brdf"))  // before reading the .brdf: the combination is the error
+        throw InputError(in.where("measured") + ": not with " + in.where("brdf") + " (each is the whole BRDF: give one)");
     if (in.given("brdf")) {
         auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(in.text("brdf")));
         for (const auto& a : values.list("param")) {
