@@ -353,3 +353,26 @@ TEST_CASE("merl: tabulate refuses what a MERL table cannot hold") {
     p.roughnessY = 0.2;
     CHECK_THROWS_AS(merl::tabulate(p), std::invalid_argument);
 }
+
+TEST_CASE("merl: load reads a file once while it is unchanged, and brdf::evaluate looks the table up") {
+    const std::string path = (std::filesystem::temp_directory_path() / ("hilite-merl-load-" + std::to_string(getpid()) + ".binary")).string();
+    merl::MeasuredBrdf constant;
+    constant.raw.assign(3 * merl::kEntries, 1500.0);
+    { std::ofstream(path, std::ios::binary) << merl::encode(constant); }
+    const auto a = merl::load(path, "--measured"), b = merl::load(path, "--measured");
+    CHECK(a.get() == b.get());  // cached: the same table
+    constant.raw.assign(3 * merl::kEntries, 3000.0);
+    { std::ofstream(path, std::ios::binary) << merl::encode(constant); }
+    std::filesystem::last_write_time(path, std::filesystem::last_write_time(path) + std::chrono::seconds(2));
+    const auto c = merl::load(path, "--measured");
+    CHECK(c.get() != a.get());  // the file changed: read again
+    CHECK(c->raw.front() == 3000.0);
+    hilite::brdf::Params p;
+    p.model = hilite::brdf::Model::None;
+    p.measured = c;
+    const hilite::dvec3 wi = hilite::sphericalDirectionDeg(30, 0), wo = hilite::sphericalDirectionDeg(35, 180);
+    const hilite::dvec3 f = hilite::brdf::evaluate(p, wi, wo);
+    for (int ch = 0; ch < 3; ++ch) CHECK(f[ch] == doctest::Approx(2.0 * merl::kScale[ch] * 1500.0).epsilon(1e-12));
+    CHECK(hilite::brdf::evaluate(p, wi, hilite::dvec3(0, 0.6, -0.8)) == hilite::dvec3(0.0));
+    std::filesystem::remove(path);
+}
