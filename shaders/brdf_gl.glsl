@@ -76,3 +76,65 @@ vec3 F_Spectral(float cosTheta_i, vec2 etaK[HILITE_SPECTRAL_SAMPLES], vec3 weigh
     return f;
 }
 //@end
+
+//@block Measured needs common angleFromSinCos
+// A measured MERL table (src/brdf/merl.hpp, the double CPU twin): f(wi, wo) from a 3D RGB32F texture of
+// 180 (phi_d) x 90 (theta_d) x 90 (theta_h) texels holding entry x channel scale, negative for "no data".
+// The same half/difference angles, bin coordinates and multilinear weights as merl.cpp, by texelFetch: the
+// 8 corners with data weighted and renormalized (a GL_LINEAR filter would blend "no data" in).
+uniform sampler3D uMeasured;
+// atan2(|y|, x) in [0, pi] from angleFromSinCos (GLSL's atan is ~1e-6 rad on llvmpipe).
+float measuredAngle(float y, float x) {
+    float len = sqrt(x * x + y * y);
+    if (!(len > 0.0)) return 0.0;
+    float s = abs(y) / len, c = x / len;
+    return c >= 0.0 ? angleFromSinCos(s, c) : PI - angleFromSinCos(s, -c);
+}
+// merl::axisWeights: (lo, hi, t) about the bin centres i + 0.5; theta clamped to the edge, phi_d wrapped.
+vec3 measuredAxis(float u, int bins, bool wrap) {
+    float s = u - 0.5;
+    if (wrap) {
+        float f = floor(s);
+        int lo = int(f);
+        lo = lo < 0 ? lo + bins : (lo >= bins ? lo - bins : lo);
+        int hi = lo + 1 == bins ? 0 : lo + 1;
+        return vec3(float(lo), float(hi), s - f);
+    }
+    if (!(s > 0.0)) return vec3(0.0);
+    if (s >= float(bins - 1)) return vec3(float(bins - 1), float(bins - 1), 0.0);
+    float lo = floor(s);
+    return vec3(lo, lo + 1.0, s - lo);
+}
+vec3 measuredBrdf(vec3 wi, vec3 wo) {
+    if (wi.z <= 0.0 || wo.z <= 0.0) return vec3(0.0);
+    // merl::toHalfDiff: h, then d of the lexicographically smaller direction (reciprocity bit for bit).
+    vec3 h = normalize(wi + wo);
+    float r = sqrt(h.x * h.x + h.y * h.y);
+    float thetaH = angleFromSinCos(r, h.z);
+    float cp = r > 0.0 ? h.x / r : 1.0, sp = r > 0.0 ? h.y / r : 0.0;
+    bool iFirst = wi.x < wo.x || (wi.x == wo.x && (wi.y < wo.y || (wi.y == wo.y && wi.z <= wo.z)));
+    vec3 v = iFirst ? wi : wo;
+    float tx = v.x * cp + v.y * sp, ty = -v.x * sp + v.y * cp, tz = v.z;
+    vec3 d = vec3(tx * h.z - tz * r, ty, tx * r + tz * h.z);
+    float thetaD = measuredAngle(sqrt(d.x * d.x + d.y * d.y), d.z);
+    // phi_d folded into [0, pi) by reciprocity: phi_d < 0 -> phi_d + pi.
+    float a = measuredAngle(d.y, d.x);
+    float phiD = d.y >= 0.0 ? a : PI - a;
+    float uh = thetaH <= 0.0 ? 0.0 : sqrt(thetaH / (0.5 * PI)) * 90.0;
+    float ud = thetaD / (0.5 * PI) * 90.0, up = phiD / PI * 180.0;
+    vec3 wh = measuredAxis(uh, 90, false), wd = measuredAxis(ud, 90, false), wp = measuredAxis(up, 180, true);
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        int ah = k >> 2, ad = (k >> 1) & 1, ap = k & 1;
+        float w = (ah == 1 ? wh.z : 1.0 - wh.z) * (ad == 1 ? wd.z : 1.0 - wd.z) * (ap == 1 ? wp.z : 1.0 - wp.z);
+        if (w == 0.0) continue;
+        ivec3 at = ivec3(int(ap == 1 ? wp.y : wp.x), int(ad == 1 ? wd.y : wd.x), int(ah == 1 ? wh.y : wh.x));
+        vec3 f = texelFetch(uMeasured, at, 0).rgb;
+        if (f.r < 0.0 || f.g < 0.0 || f.b < 0.0) continue;  // no data
+        sum += w * f;
+        weight += w;
+    }
+    return weight > 0.0 ? sum / weight : vec3(0.0);
+}
+//@end

@@ -168,6 +168,7 @@ Renderer::~Renderer() {
     m_programs.clear();
     m_fbos.clear();
     m_bumpTextures.reset();
+    for (auto& t : m_measuredTextures) glDeleteTextures(1, &t.second);
     if (m_vbo) glDeleteBuffers(1, &m_vbo);
     if (m_vao) glDeleteVertexArrays(1, &m_vao);
 }
@@ -280,6 +281,7 @@ void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const Pinho
     glClear(GL_COLOR_BUFFER_BIT);
     prog.use();
     setUniforms(prog, scene, camera, jitter);
+    if (scene.brdf.measured && !scene.brdfFile) bindMeasured(prog, scene.brdf.measured);
     if (scene.surface.bumps) {
         if (!m_bumpTextures) m_bumpTextures = std::make_unique<BumpTextures>();
         m_bumpTextures->bind(prog, scene, camera);
@@ -292,6 +294,40 @@ void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const Pinho
     glDisable(GL_SCISSOR_TEST);
     m_drawn = &fbo;
     m_drawnCrop = crop;
+}
+
+void Renderer::bindMeasured(const gl::Program& prog, const std::shared_ptr<const brdf::merl::MeasuredBrdf>& table) {
+    namespace merl = brdf::merl;
+    // Unit 7: past the bump fields' 0-5 (render/bumps.cpp); a measured scene has no bumps (scene/resolve.cpp).
+    constexpr int kUnit = 7;
+    unsigned int tex = 0;
+    for (const auto& t : m_measuredTextures)
+        if (t.first == table) tex = t.second;
+    glActiveTexture(GL_TEXTURE0 + kUnit);
+    if (!tex) {
+        // f = entry x scale per channel, texels in the file's order (phi_d fastest, then theta_d, theta_h);
+        // no data stays negative for the shader to skip.
+        std::vector<float> texels(3 * merl::kEntries);
+        for (std::size_t i = 0; i < merl::kEntries; ++i)
+            for (int c = 0; c < 3; ++c) {
+                const double e = table->entry(c, i);
+                texels[3 * i + std::size_t(c)] = e < 0 ? -1.0f : float(e * merl::kScale[c]);
+            }
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_3D, tex);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, merl::kPhiDBins, merl::kThetaDBins, merl::kThetaHBins, 0, GL_RGB,
+                     GL_FLOAT, texels.data());
+        // texelFetch reads texels exactly; NEAREST and no mipmaps make the texture complete.
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
+        HILITE_GL_CHECK_WHAT("uploading a measured table");
+        m_measuredTextures.emplace_back(table, tex);
+    }
+    glBindTexture(GL_TEXTURE_3D, tex);
+    if (const int loc = prog.uniform("uMeasured"); loc >= 0) glUniform1i(loc, kUnit);
+    glActiveTexture(GL_TEXTURE0);
 }
 
 void Renderer::finish() const { glFinish(); }

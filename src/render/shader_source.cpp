@@ -185,6 +185,7 @@ std::vector<std::string> programBlocks(const brdf::Params& p) {
 }  // namespace
 
 std::vector<std::string> termBlocks(const brdf::Params& p) {
+    if (p.measured) return {"Measured"};  // the table is the whole BRDF: no analytic term is compiled in
     std::vector<std::string> out;
     const Rows rows(p);
     if (rows.distribution) out.push_back("HalfVector");
@@ -199,6 +200,10 @@ std::string dispatchSource(const brdf::Params& p) {
     s << "// ---- Dispatch (generated for the terms:";
     for (const auto& b : termBlocks(p)) s << " " << b;
     s << ") ----\n";
+    if (p.measured) {  // the texture is bound by the renderer (Renderer::drawWith)
+        s << "vec3 brdf(vec3 wi, vec3 wo) { return measuredBrdf(wi, wo); }\n";
+        return s.str();
+    }
     const Rows rows(p);
     std::vector<std::string> uniforms;  // each once, in the order the rows name them
     rows.each([&](const auto& row) {
@@ -279,14 +284,7 @@ size_t ndfTableRows(const brdf::Params& p) {
 
 }  // namespace
 
-/// Until the GL twin of a measured table exists, a GL render of one would draw the empty dispatch (black).
-void refuseMeasured(const brdf::Params& p) {
-    if (p.measured)
-        throw InputError("--measured: the GL path has no lookup of a MERL table yet (use --renderer cpu or --reference)");
-}
-
 std::string effectKey(const brdf::Params& p, Output out) {
-    refuseMeasured(p);
     // The dispatch names every term and call (never a parameter value), so it identifies the program.
     return std::string(out == Output::Measure ? "measure" : "color") + "|" + std::to_string(spectralSamples(p)) + "|" +
            std::to_string(ndfTableRows(p)) + "|" + dispatchSource(p);
@@ -318,7 +316,6 @@ std::vector<const ShaderBlock*> closure(const std::vector<ShaderBlock>& blocks, 
 }
 
 ProgramSources assemble(const brdf::Params& p, Output out, const std::string& dir) {
-    refuseMeasured(p);
     const auto blocks = termLibrary(dir);
     std::vector<std::string> names{"common"};
     const auto terms = programBlocks(p);
