@@ -116,3 +116,22 @@ TEST_CASE("measured: the GL measurement of the table agrees with the CPU twin's 
         CHECK(std::abs(double(gl[i]["aspect"]) - double(cpu[i]["aspect"])) < 1e-3);
     }
 }
+
+TEST_CASE("measured: material.measured sweeps in an experiment like any key, paths beside the experiment file") {
+    Table t;
+    REQUIRE(hilite_test::hilite("brdf tabulate --model beckmann --roughness 0.2 -o " + (t.dir / "beck.binary")).code == 0);
+    { std::ofstream(t.dir / "sweep.toml") << "[experiment]\nname = \"measured_sweep\"\ntitle = \"t\"\ndescription = \"d\"\n"
+                                             "[scene.camera]\nsize = \"128\"\n[scene.measurement]\nrenderer = \"cpu\"\n"
+                                             "[[sweep]]\nkey = \"material.measured\"\nvalues = [\"ggx.binary\", \"beck.binary\"]\n"
+                                             "[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 40]\n"; }
+    const auto r = hilite_test::hilite("run " + (t.dir / "sweep.toml") + " -o " + (t.dir / "out"));
+    REQUIRE(r.code == 0);
+    std::ifstream in(t.dir / "out/results.jsonl");
+    std::stringstream all;
+    all << in.rdbuf();
+    const auto got = rows(all.str());
+    REQUIRE(got.size() == 4);
+    CHECK(got[0]["model"] == "measured:ggx.binary");
+    CHECK(got[3]["model"] == "measured:beck.binary");
+    CHECK(double(got[1]["aspect"]) != double(got[3]["aspect"]));  // two tables, two highlights at 40 deg
+}
