@@ -1,5 +1,7 @@
 #include "brdf/integrate.hpp"
 
+#include "brdf/merl.hpp"
+
 #include "brdf/evaluate.hpp"
 #include "brdf/ndf_table.hpp"
 
@@ -149,6 +151,11 @@ void cookTorranceAzimuths(const dvec3& wi, std::vector<double>& phis) {
 /// has kinks small enough for the graded panels.
 constexpr size_t kMaxTableEdges = 64;
 void tableEdges(const Params& p, double end, std::vector<double>& edges) {
+    if (p.measured) {  // a MERL table is multilinear between theta_h bin centres (kinks there; graded near 0)
+        for (int i = 0; i < merl::kThetaHBins; ++i)
+            if (const double t = merl::thetaHalfAt(i + 0.5); t > 0.0 && t < end) edges.push_back(t);
+        return;
+    }
     if (p.model != Model::Tabulated || !p.ndfTable || p.ndfTable->theta.size() > kMaxTableEdges) return;
     for (double t : p.ndfTable->theta)
         if (t > 0.0 && t < end) edges.push_back(t);
@@ -300,7 +307,7 @@ dvec3 albedo(const Params& p, double thetaDeg, double phiDeg) {
     const dvec3 wi = sphericalDirectionDeg(thetaDeg, phiDeg);
     if (wi.z <= 0.0) return dvec3(0.0);  // light at or below the horizon: nothing is received
     dvec3 rho = p.diffuse == Diffuse::None ? dvec3(0.0) : diffuseAlbedo(p, wi);
-    if (isMicrofacet(p.model))
+    if (isMicrofacet(p.model) || p.measured)  // a table over half/difference angles: integrated over h too
         rho += microfacetAlbedo(p, wi);
     else if (p.model == Model::Phong || p.model == Model::PhongClassic || p.model == Model::Retro)
         rho += reflectionLobeAlbedo(p, wi);

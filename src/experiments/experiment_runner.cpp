@@ -90,6 +90,9 @@ void ExperimentRunner::applyMatch(scene::Values& values, nlohmann::json& row) {
     if (r.scene.brdfFile)
         throw InputError(m_exp.path + ": [match]: matching widths needs a CPU twin, and " + r.scene.brdfFile->path +
                          " (a .brdf file) has none: set its parameters by hand");
+    if (r.scene.brdf.measured)
+        throw InputError(m_exp.path + ": [match]: matching widths sets a model's width, and " +
+                         r.values.text("measured") + " (a measured table) has none");
     r.scene.light.incidenceDeg = 0;
     const std::string key = brdf::toString(r.scene.brdf.model);
     const bool exponent = brdf::usesExponent(r.scene.brdf.model);

@@ -123,8 +123,8 @@ std::vector<Param> build() {
          "model tabulated", tabulated, "ndf_table", [](const Resolved& r) -> json { return r.scene.brdf.ndfTable->file; }});
     add({"measured", T::Material, K::Path, "", 0, 0, false, false, {}, "",
          "a MERL .binary table (90 x 90 x 180, Matusik 2003): the whole BRDF (lobe, F, G, diffuse), looked up "
-         "multilinearly; replaces --model and its terms (the row's model says measured:FILE; not with --model, "
-         "--brdf, --bumps)",
+         "multilinearly; replaces --model and its terms (the row's model says measured:FILE; not with any other "
+         "material flag, nor --bumps)",
          "every scene", measured, "measured", [](const Resolved& r) -> json { return r.scene.brdf.measured->path; }});
     add({"brdf", T::Material, K::Path, "", 0, 0, false, false, {}, "",
          "a BRDF Explorer .brdf file (analytic): its GLSL BRDF() replaces --model and its terms (only "

@@ -184,10 +184,10 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
 
 brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) {
     brdf::Params p;
-    if (in.given("measured"))  // the table is the whole BRDF: a named model (or NDF table) would go unused
-        for (const char* other : {"model", "ndf_table"})
-            if (in.given(other))
-                throw InputError(in.where(other) + ": not with " + in.where("measured") +
+    if (in.given("measured"))  // the table is the whole BRDF: any other material term given would go unused
+        for (const Param& other : registry())
+            if (other.table == Table::Material && other.name != "measured" && in.given(other.name.c_str()))
+                throw InputError(in.where(other.name.c_str()) + ": not with " + in.where("measured") +
                                  " (the MERL table is the whole BRDF: its lobe, F, G and diffuse)");
     p.model = *brdf::parseModel(in.text("model"));
     p.exponent = in.number("exponent");

@@ -54,7 +54,7 @@ TEST_CASE("measured: the row says measured:FILE, carries the path and none of th
     CHECK(e.out.find("measured MERL table " + t.file) != std::string::npos);
 }
 
-TEST_CASE("measured: refused with --model, --brdf, --bumps and for a bad file, in one line, exit 2") {
+TEST_CASE("measured: refused with every other material flag, --bumps and for a bad file, in one line, exit 2") {
     Table t;
     const std::string bad = t.dir / "short.binary";
     { std::ofstream(bad) << "not a table"; }
@@ -64,7 +64,11 @@ TEST_CASE("measured: refused with --model, --brdf, --bumps and for a bad file, i
     const Case cases[] = {
         {"--measured " + t.file + " --model ggx", "--model: not with --measured"},
         {"--measured " + t.file + " --ndf-table x.csv", "--ndf-table: not with --measured"},
-        {"--measured " + t.file + " --brdf x.brdf", "--measured: not with --brdf"},
+        {"--measured " + t.file + " --brdf x.brdf", "--brdf: not with --measured"},
+        {"--measured " + t.file + " --roughness 0.2", "--roughness: not with --measured"},
+        {"--measured " + t.file + " --fresnel schlick", "--fresnel: not with --measured"},
+        {"--measured " + t.file + " --diffuse lambert", "--diffuse: not with --measured"},
+        {"--measured " + t.file + " --material gold", "--material: not with --measured"},
         {"--measured " + t.file + " --bumps explicit", "a measured table has none"},
         {"--measured " + bad, "--measured: '" + bad + "' is 11 bytes"},
         {"--measured " + (t.dir / "missing.binary"), "--measured"},
