@@ -44,6 +44,7 @@ int run(int argc, char** argv) {
     add("measure", "measure the highlight: ellipse, aspect, eccentricity, per incidence angle", &addMeasure);
     add("brdf", "the reflectance terms' physics: albedo, fresnel, normalization (tables / JSON), strip (PNG), tabulate (MERL)", &addBrdf);
     add("explain", "print the resolved scene, its active effects and the GLSL it compiles", &addExplain);
+    add("fit", "fit analytic models (phong, blinn, beckmann, ggx, ...) to a measured or given highlight and rank them", &addFit);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
     add("probe-shader", "", &addProbeShader);  // hidden: the child process of cli/shader_probe.cpp

@@ -21,6 +21,7 @@ Action addBrdf(CLI::App& app);
 Action addRun(CLI::App& app);
 Action addMerge(CLI::App& app);
 Action addExplain(CLI::App& app);
+Action addFit(CLI::App& app);  ///< cli/fit_cmd.cpp
 Action addProbeShader(CLI::App& app);  ///< cli/shader_probe.cpp
 
 }  // namespace hilite::cli

@@ -1,0 +1,493 @@
+#include "experiments/fit.hpp"
+
+#include "brdf/params.hpp"
+#include "core/error.hpp"
+#include "core/math.hpp"
+#include "core/text.hpp"
+#include "experiments/plot.hpp"
+#include "io/image_io.hpp"
+#include "measurement/diagnose.hpp"
+#include "measurement/measure_scene.hpp"
+#include "render/renderer.hpp"
+#include "scene/registry.hpp"
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace hilite::experiments {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// The row flags that leave no shape to compare (measure/highlight.hpp).
+const char* const kUnusable[] = {"no_highlight", "mirror", "unbounded_at_horizon", "effectively_mirror"};
+
+/// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0.
+struct Space {
+    brdf::Model model;
+    const char* width;  ///< "exponent" or "roughness"
+    double lo, hi, guess;  ///< bounds and a start for ln(width)
+    bool aniso, f0;
+};
+
+Space spaceOf(const std::string& name, const FitOptions& o) {
+    const auto model = brdf::parseModel(name);
+    Space s{*model, "roughness", std::log(1e-3), std::log(2.0), std::log(0.1), false, false};
+    if (brdf::usesExponent(*model)) s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false};
+    s.aniso = o.anisotropy && brdf::allowsAnisotropy(*model);
+    s.f0 = o.f0 && brdf::isMicrofacet(*model);
+    return s;
+}
+
+/// A scene's values without its material: the light, camera and measurement keys every model shares.
+scene::Values withoutMaterial(const scene::Values& v) {
+    scene::Values out;
+    for (const auto& [name, value] : v.given())
+        if (scene::find(name)->table != scene::Table::Material) out.set(name, value.text, value.origin);
+    for (const auto& [name, items] : v.lists())
+        if (scene::find(name)->table != scene::Table::Material)
+            for (const auto& item : items) out.set(name, item.text, item.origin);
+    return out;
+}
+
+std::string angleList(const std::vector<double>& angles) {
+    std::vector<std::string> t;
+    for (double a : angles) t.push_back(exactText(a));
+    return join(t, ",");
+}
+
+FitSample sampleOf(const nlohmann::json& row, double threshold) {
+    FitSample s;
+    s.incidence = row.value("incidence_deg", 0.0);
+    s.threshold = threshold;
+    s.major = row.value("major_deg", 0.0);
+    s.minor = row.value("minor_deg", 0.0);
+    s.aspect = row.value("aspect", 0.0);
+    s.peak = row.value("peak", 0.0);
+    std::vector<std::string> bad;
+    for (const auto& f : row.value("flags", nlohmann::json::array()))
+        for (const char* u : kUnusable)
+            if (f.get<std::string>() == u) bad.push_back(u);
+    s.usable = bad.empty() && s.major > 0 && s.minor > 0 && std::isfinite(s.major) && std::isfinite(s.minor);
+    s.why = bad.empty() && !s.usable ? "no shape" : join(bad, ",");
+    return s;
+}
+
+/// The resolved scenes of one sweep: one per threshold, each over every angle.
+std::vector<scene::Resolved> sweepScenes(scene::Values v, const FitResult& r) {
+    v.set("incidence", angleList(r.angles));
+    std::vector<scene::Resolved> out;
+    for (double t : r.thresholds) {
+        v.set("threshold", exactText(t));
+        out.push_back(scene::resolve(v));
+    }
+    return out;
+}
+
+FitSample sampleOf(const measure::Shape& shape, double incidence, double threshold) {
+    nlohmann::json flags = nlohmann::json::array();
+    for (measure::Flag f : shape.flags) flags.push_back(measure::toString(f));
+    return sampleOf(nlohmann::json{{"incidence_deg", incidence},
+                                   {"major_deg", shape.major_deg},
+                                   {"minor_deg", shape.minor_deg},
+                                   {"aspect", shape.aspect},
+                                   {"peak", shape.peak},
+                                   {"flags", flags}},
+                    threshold);
+}
+
+/// The peak of a measurement image (channel 0 of (L, u, v, w)) between pixels: the brightest pixel raised by the
+/// parabola through it and its neighbours along each axis. A frame made for the lowest threshold has a coarser
+/// pitch than one made for a high threshold, and a peak taken at the brightest pixel alone is low by O(pitch^2)
+/// of the curvature: at threshold 0.9 that moved the semi-axes by 0.2% (0 deg) to 1.4% (70 deg), GGX 0.1, 256 px.
+double peakBetweenPixels(const ImageF& img) {
+    const int W = img.width, H = img.height;
+    auto L = [&](int x, int y) { return double(img.data[4 * (size_t(y) * size_t(W) + size_t(x))]); };
+    auto w = [&](int x, int y) { return img.data[4 * (size_t(y) * size_t(W) + size_t(x)) + 3] > 0.f; };
+    int bx = 0, by = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            if (L(x, y) > L(bx, by)) bx = x, by = y;
+    const double b = L(bx, by);
+    double peak = b;
+    auto raise = [&](double a, double c) {
+        const double curve = a - 2.0 * b + c;
+        if (curve < 0.0) peak += -(a - c) * (a - c) / (8.0 * curve);
+    };
+    if (bx > 0 && bx + 1 < W && w(bx - 1, by) && w(bx + 1, by)) raise(L(bx - 1, by), L(bx + 1, by));
+    if (by > 0 && by + 1 < H && w(bx, by - 1) && w(bx, by + 1)) raise(L(bx, by - 1), L(bx, by + 1));
+    return peak;
+}
+
+/// A higher threshold's region measured in the lowest one's frame with fewer pixels than this across its minor axis
+/// is measured in a frame of its own: below it the shared frame's semi-axes drifted past 2e-3 of the own frame's.
+constexpr double kOneFrameMinPixels = 40;
+
+/// Whether a sweep may take the one-frame route below: GL, automatic framing with a twin, one sample per pixel,
+/// and nothing the row's own path adds (tolerance search, reference, bump fields).
+bool oneFrame(const scene::Resolved& r) {
+    return !r.reference && r.tolerance == 0 && !r.setup.cpu && render::hasTwin(r.scene) && !r.scene.surface.bumps &&
+           r.setup.fovDeg == 0 && r.setup.supersample == 1;
+}
+
+/// Measures a sweep, incidence-major (the order of FitResult::samples). One frame serves every threshold of an
+/// angle: the region at the lowest threshold is framed and measured as always, and the higher thresholds' regions,
+/// nested inside it ({L >= t peak} shrinks as t grows), are measured on a render of that same frame. Where the
+/// lowest threshold's measurement or a higher one's says anything (a flag, several parts), that threshold is
+/// measured on its own instead, so every sample is one the full measurement would give or stand behind.
+std::vector<FitSample> measureSweep(measurement::Session& session, const std::vector<scene::Resolved>& scenes,
+                                    const FitResult& r) {
+    const size_t nt = r.thresholds.size();
+    std::vector<FitSample> out(r.angles.size() * nt);
+    if (!oneFrame(scenes.front())) {
+        for (size_t j = 0; j < nt; ++j) {
+            const auto rows = session.measure(scenes[j]);
+            for (size_t i = 0; i < rows.size(); ++i) out[i * nt + j] = sampleOf(rows[i], r.thresholds[j]);
+        }
+        return out;
+    }
+    const size_t jmin = size_t(std::min_element(r.thresholds.begin(), r.thresholds.end()) - r.thresholds.begin());
+    render::Renderer& renderer = session.rendererFor(scenes[jmin]);
+    ImageF img;
+    for (size_t i = 0; i < r.angles.size(); ++i) {
+        auto alone = [&](size_t j) {
+            render::Scene sc = scenes[j].scene;
+            sc.light.incidenceDeg = r.angles[i];
+            out[i * nt + j] = sampleOf(measurement::measure(&renderer, sc, scenes[j].setup).shape, r.angles[i], r.thresholds[j]);
+        };
+        render::Scene sc = scenes[jmin].scene;
+        sc.light.incidenceDeg = r.angles[i];
+        const scene::MeasureSetup& setup = scenes[jmin].setup;
+        const measurement::Measurement m = measurement::measure(&renderer, sc, setup);
+        out[i * nt + jmin] = sampleOf(m.shape, r.angles[i], r.thresholds[jmin]);
+        double peak = 0;
+        const bool shared = m.shape.flags.empty() && m.shape.components == 1 && m.framing == "automatic";
+        if (shared) {
+            const PinholeCamera cam = measurement::measurementCamera(sc, m.center, m.fovDeg, setup.width, setup.height);
+            renderer.render(sc, cam, render::Output::Measure, img);
+            peak = peakBetweenPixels(img);
+        }
+        for (size_t j = 0; j < nt; ++j) {
+            if (j == jmin) continue;
+            if (!shared) {
+                alone(j);
+                continue;
+            }
+            measure::Options opt = scenes[j].setup.options;
+            opt.level = opt.threshold * peak;
+            measure::Shape shape = measure::measureImage(img.data.data(), img.width, img.height, opt);
+            measurement::diagnose(sc, opt.threshold, measurement::Path::Gl, shape);
+            if (!shape.flags.empty() || shape.components != 1 || shape.minor_pixels < kOneFrameMinPixels) alone(j);
+            else out[i * nt + j] = sampleOf(shape, r.angles[i], r.thresholds[j]);
+        }
+    }
+    return out;
+}
+
+double residualOf(const FitResult& r, const std::vector<FitSample>& model, bool peak) {
+    double sum = 0, weight = 0;
+    const size_t nt = r.thresholds.size();
+    for (size_t k = 0; k < model.size(); ++k) {
+        const FitSample &t = r.samples[k], &m = model[k];
+        if (!t.usable) continue;
+        const double w = r.weights[k % nt];
+        if (!m.usable) {
+            sum += w * 2.0;  // both semi-axes at log ratio 1
+        } else {
+            const double a = std::log(m.major / t.major), b = std::log(m.minor / t.minor);
+            sum += w * (a * a + b * b);
+        }
+        weight += 2.0 * w;
+        if (peak && k % nt == 0 && t.peak > 0) {
+            const double p = m.peak > 0 ? std::log(m.peak / t.peak) : 1.0;
+            sum += w * p * p;
+            weight += w;
+        }
+    }
+    return weight > 0 ? std::sqrt(sum / weight) : kNaN;
+}
+
+/// The model's values at x (the space's parameters).
+scene::Values modelValues(const scene::Values& common, const Space& s, const FitOptions& o, const std::vector<double>& x) {
+    scene::Values v = common;
+    v.set("model", brdf::toString(s.model));
+    v.set(s.width, exactText(std::exp(x[0])));
+    size_t k = 1;
+    if (s.aniso) v.set("roughness_y", exactText(std::exp(x[0] + x[k++])));
+    if (!o.geometry.empty()) v.set("geometry", o.geometry);
+    if (s.f0) {
+        v.set("fresnel", "schlick");
+        v.set("f0", exactText(x[k]));
+    } else if (!o.fresnel.empty() && brdf::isMicrofacet(s.model)) {
+        v.set("fresnel", o.fresnel);
+    }
+    return v;
+}
+
+/// A start for ln(width): the model whose twin half-width at the first angle and the threshold nearest 0.5
+/// equals the target's semi-major axis there (bisection in log(parameter), as an experiment's [match]).
+double startingWidth(const scene::Values& common, const Space& s, const FitOptions& o, const FitResult& r) {
+    const size_t nt = r.thresholds.size();
+    size_t jt = 0;
+    for (size_t j = 0; j < nt; ++j)
+        if (std::abs(r.thresholds[j] - 0.5) < std::abs(r.thresholds[jt] - 0.5)) jt = j;
+    const FitSample* target = nullptr;
+    for (size_t i = 0; i < r.angles.size() && !target; ++i)
+        if (r.samples[i * nt + jt].usable) target = &r.samples[i * nt + jt];
+    if (!target) return s.guess;
+    std::vector<double> x{s.guess, 0.0, 0.04};
+    scene::Values v = modelValues(common, s, o, x);
+    v.set("incidence", exactText(target->incidence));
+    scene::Resolved res = scene::resolve(v);
+    double lo = s.lo, hi = s.hi;
+    const bool exponent = brdf::usesExponent(s.model);
+    for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (exponent ? res.scene.brdf.exponent : res.scene.brdf.roughness) = std::exp(mid);
+        const double w = rad2deg(measurement::twinHalfWidth(res.scene, target->threshold));
+        ((w > target->major) == exponent ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+std::string stopText(nlopt::result res) {
+    switch (res) {
+        case nlopt::SUCCESS: return "success";
+        case nlopt::STOPVAL_REACHED: return "stopval reached";
+        case nlopt::FTOL_REACHED: return "ftol reached";
+        case nlopt::XTOL_REACHED: return "xtol reached";
+        case nlopt::MAXEVAL_REACHED: return "maxeval reached";
+        case nlopt::MAXTIME_REACHED: return "maxtime reached";
+        default: return "failure";
+    }
+}
+
+/// The scene's material in words, for the result.
+std::string targetText(const scene::Values& v) {
+    if (v.given("measured")) return "measured:" + v.text("measured");
+    if (v.given("brdf")) return "brdf:" + v.text("brdf");
+    std::string s = v.text("model");
+    for (const auto& [name, value] : v.given())
+        if (scene::find(name)->table == scene::Table::Material && name != "model") s += " " + name + "=" + value.text;
+    return s;
+}
+
+}  // namespace
+
+void checkFitOptions(const FitOptions& o) {
+    if (o.models.empty()) throw InputError("--models: give at least one model (phong, blinn, beckmann, ggx, ...)");
+    for (const std::string& m : o.models) {
+        const auto model = brdf::parseModel(m);
+        if (!model || *model == brdf::Model::None || *model == brdf::Model::Tabulated)
+            throw InputError("--models: '" + m + "' is not a model with a width to fit (allowed: phong, phong-classic, "
+                                                 "retro, blinn, gaussian, beckmann, ggx)");
+    }
+    if (o.thresholds.empty()) throw InputError("--thresholds: give at least one threshold in (0, 1)");
+    for (double t : o.thresholds)
+        if (!(t > 0 && t < 1)) throw InputError("--thresholds: each must be in (0, 1) (got " + fmt(t) + ")");
+    if (!o.weights.empty()) {
+        if (o.weights.size() != o.thresholds.size())
+            throw InputError("--weights: one per threshold (" + std::to_string(o.thresholds.size()) + "), got " +
+                             std::to_string(o.weights.size()));
+        double sum = 0;
+        for (double w : o.weights) {
+            if (!(w >= 0) || !std::isfinite(w)) throw InputError("--weights: each must be a finite number >= 0 (got " + fmt(w) + ")");
+            sum += w;
+        }
+        if (!(sum > 0)) throw InputError("--weights: at least one must be > 0");
+    }
+    if (o.anisotropy && std::none_of(o.models.begin(), o.models.end(), [](const std::string& m) {
+            return brdf::allowsAnisotropy(*brdf::parseModel(m));
+        }))
+        throw InputError("--fit-anisotropy: needs beckmann or ggx among --models");
+    if (o.f0 && std::none_of(o.models.begin(), o.models.end(),
+                             [](const std::string& m) { return brdf::isMicrofacet(*brdf::parseModel(m)); }))
+        throw InputError("--fit-f0: needs a microfacet model (blinn, gaussian, beckmann, ggx) among --models");
+    if (o.f0 && !o.fresnel.empty() && o.fresnel != "schlick")
+        throw InputError("--fit-f0: fits Schlick's F0, not with --fit-fresnel " + o.fresnel);
+}
+
+FitResult fitModels(measurement::Session& session, const scene::Values& target, const FitOptions& o) {
+    checkFitOptions(o);
+    FitResult r;
+    r.target = targetText(target);
+    r.thresholds = o.thresholds;
+    r.weights = o.weights.empty() ? std::vector<double>(o.thresholds.size(), 1.0) : o.weights;
+    r.angles = scene::resolve(target).angles;
+    r.aspectThreshold = *std::min_element(r.thresholds.begin(), r.thresholds.end(), [](double a, double b) {
+        return std::abs(a - 0.5) < std::abs(b - 0.5);
+    });
+    // Every scene resolved before the first measurement: the target's, and each model's at its start.
+    const auto targetScenes = sweepScenes(target, r);
+    const scene::Values common = withoutMaterial(target);
+    std::vector<Space> spaces;
+    for (const std::string& m : o.models) {
+        spaces.push_back(spaceOf(m, o));
+        sweepScenes(modelValues(common, spaces.back(), o, {spaces.back().guess, 0.0, 0.04}), r);
+    }
+    r.samples = measureSweep(session, targetScenes, r);
+    if (std::none_of(r.samples.begin(), r.samples.end(), [](const FitSample& s) { return s.usable; }))
+        throw InputError("fit: the target shows no measurable highlight at any incidence and threshold (" +
+                         r.samples.front().why + ")");
+
+    for (size_t k = 0; k < o.models.size(); ++k) {
+        const Space& s = spaces[k];
+        const auto t0 = Clock::now();
+        ModelFit fit;
+        fit.model = brdf::toString(s.model);
+        std::vector<double> x{startingWidth(common, s, o, r)}, lo{s.lo}, hi{s.hi}, step{0.05};
+        if (s.aniso) x.push_back(0.0), lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1);
+        if (s.f0) x.push_back(0.04), lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
+        x[0] = std::clamp(x[0], s.lo, s.hi);
+        double best = std::numeric_limits<double>::infinity();
+        std::vector<double> bestX = x;
+        std::vector<FitSample> bestSamples;
+        auto objective = [&](const std::vector<double>& xv) {
+            ++fit.evaluations;
+            const auto samples = measureSweep(session, sweepScenes(modelValues(common, s, o, xv), r), r);
+            const double res = residualOf(r, samples, s.f0);
+            if (res < best) best = res, bestX = xv, bestSamples = samples;
+            return std::isfinite(res) ? res : 1e6;
+        };
+        nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(x.size()));
+        opt.set_lower_bounds(lo);
+        opt.set_upper_bounds(hi);
+        opt.set_initial_step(step);
+        opt.set_xtol_abs(o.xtolAbs);
+        opt.set_maxeval(o.maxEvaluations);
+        opt.set_min_objective(
+            [](const std::vector<double>& xv, std::vector<double>&, void* data) {
+                return (*static_cast<decltype(objective)*>(data))(xv);
+            },
+            &objective);
+        double value = 0;
+        try {
+            fit.stop = stopText(opt.optimize(x, value));
+        } catch (const nlopt::roundoff_limited&) {
+            fit.stop = "roundoff limited";
+        } catch (const nlopt::forced_stop&) {
+            fit.stop = "forced stop";
+        }
+        fit.residual = best;
+        fit.samples = bestSamples;
+        fit.params[s.width] = std::exp(bestX[0]);
+        size_t j = 1;
+        if (s.aniso) fit.params["roughness_y"] = std::exp(bestX[0] + bestX[j++]);
+        if (s.f0) fit.params["f0"] = bestX[j];
+        fit.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        r.fits.push_back(std::move(fit));
+    }
+    std::vector<size_t> order(r.fits.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return r.fits[a].residual < r.fits[b].residual; });
+    for (size_t i = 0; i < order.size(); ++i) r.fits[order[i]].rank = int(i) + 1;
+    return r;
+}
+
+std::vector<double> aspectResiduals(const FitResult& r, const ModelFit& m) {
+    const size_t nt = r.thresholds.size();
+    const size_t jt = size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+    std::vector<double> out;
+    for (size_t i = 0; i < r.angles.size(); ++i) {
+        const FitSample &t = r.samples[i * nt + jt], &f = m.samples[i * nt + jt];
+        out.push_back(t.usable && f.usable ? f.aspect - t.aspect : kNaN);
+    }
+    return out;
+}
+
+nlohmann::ordered_json toJson(const FitResult& r, const ModelFit& m) {
+    nlohmann::ordered_json j;
+    j["model"] = m.model;
+    j["params"] = m.params;
+    j["residual"] = m.residual;
+    j["rank"] = m.rank;
+    j["target"] = r.target;
+    j["evaluations"] = m.evaluations;
+    j["time_ms"] = m.ms;
+    j["stop"] = m.stop;
+    j["thresholds"] = r.thresholds;
+    j["weights"] = r.weights;
+    j["incidence_deg"] = r.angles;
+    j["aspect_threshold"] = r.aspectThreshold;
+    nlohmann::ordered_json res = nlohmann::ordered_json::array(), target = nlohmann::ordered_json::array(),
+                           fitted = nlohmann::ordered_json::array();
+    const size_t nt = r.thresholds.size();
+    const size_t jt = size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+    const auto d = aspectResiduals(r, m);
+    for (size_t i = 0; i < d.size(); ++i) {
+        res.push_back(std::isfinite(d[i]) ? nlohmann::ordered_json(d[i]) : nlohmann::ordered_json());
+        const FitSample &t = r.samples[i * nt + jt], &f = m.samples[i * nt + jt];
+        target.push_back(t.usable ? nlohmann::ordered_json(t.aspect) : nlohmann::ordered_json());
+        fitted.push_back(f.usable ? nlohmann::ordered_json(f.aspect) : nlohmann::ordered_json());
+    }
+    j["target_aspect"] = target;
+    j["aspect"] = fitted;
+    j["aspect_residual"] = res;
+    return j;
+}
+
+bool writeFitFolder(const std::string& dir, const FitResult& r, std::string& why) {
+    std::ostringstream js, csv;
+    for (const ModelFit& m : r.fits) js << toJson(r, m).dump() << "\n";
+    csv.precision(17);
+    csv << "series,model,params,incidence_deg,threshold,major_deg,minor_deg,aspect,peak,usable\n";
+    auto rows = [&](const std::string& series, const std::string& model, const std::string& params,
+                    const std::vector<FitSample>& ss) {
+        for (const FitSample& s : ss)
+            csv << series << "," << model << ",\"" << params << "\"," << s.incidence << "," << s.threshold << ","
+                << s.major << "," << s.minor << "," << s.aspect << "," << s.peak << "," << (s.usable ? 1 : 0) << "\n";
+    };
+    std::string target = r.target;
+    std::replace(target.begin(), target.end(), '"', '\'');
+    std::replace(target.begin(), target.end(), ',', ';');
+    rows("target", target, "", r.samples);
+    for (const ModelFit& m : r.fits) {
+        std::string p = m.params.dump();
+        std::replace(p.begin(), p.end(), '"', '\'');
+        rows("fit", m.model, p, m.samples);
+    }
+    io::writeFileAtomic(dir + "/fit.json", js.str());
+    io::writeFileAtomic(dir + "/fit.csv", csv.str());
+    // Plots: aspect at the aspect threshold against incidence, the target and each fit; and the residual.
+    std::vector<nlohmann::json> aspectRows, residualRows;
+    const size_t nt = r.thresholds.size();
+    const size_t jt = size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+    for (size_t i = 0; i < r.angles.size(); ++i)
+        if (r.samples[i * nt + jt].usable)
+            aspectRows.push_back({{"incidence", r.angles[i]}, {"aspect", r.samples[i * nt + jt].aspect}, {"series", "target"}});
+    for (const ModelFit& m : r.fits) {
+        const std::string name = m.model + " (rank " + std::to_string(m.rank) + ")";
+        const auto d = aspectResiduals(r, m);
+        for (size_t i = 0; i < r.angles.size(); ++i) {
+            if (m.samples[i * nt + jt].usable)
+                aspectRows.push_back({{"incidence", r.angles[i]}, {"aspect", m.samples[i * nt + jt].aspect}, {"series", name}});
+            if (std::isfinite(d[i])) residualRows.push_back({{"incidence", r.angles[i]}, {"residual", d[i]}, {"series", name}});
+        }
+    }
+    PlotSpec a;
+    a.file = "fit_aspect.png";
+    a.title = "aspect at threshold " + fmt(r.aspectThreshold) + ": " + r.target + " and each fit";
+    a.x = "incidence";
+    a.y = "aspect";
+    a.series = "series";
+    a.xlabel = "incidence (deg)";
+    a.ylabel = "aspect (minor / major)";
+    PlotSpec b = a;
+    b.file = "fit_residual.png";
+    b.title = "aspect residual (fit - target) at threshold " + fmt(r.aspectThreshold);
+    b.y = "residual";
+    b.ylabel = "aspect residual";
+    b.key = "top left";
+    std::string w1, w2;
+    const bool ok1 = plot(dir, a, aspectRows, w1), ok2 = plot(dir, b, residualRows, w2);
+    why = !ok1 ? w1 : w2;
+    return ok1 && ok2;
+}
+
+}  // namespace hilite::experiments

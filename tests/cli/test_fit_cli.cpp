@@ -1,0 +1,113 @@
+// `hilite fit` as a user meets it: tables tabulated from each built-in model are fitted back to the model and
+// the parameters that made them (the fit's own truth: the generating model), Phong's aspect residual against a
+// GGX table grows with incidence (the seed's prediction), and bad input is refused in one line, exit 2.
+
+#include "support/run_hilite.hpp"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+
+namespace {
+
+std::vector<nlohmann::json> jsonLines(const std::string& out) {
+    std::vector<nlohmann::json> v;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty()) v.push_back(nlohmann::json::parse(line));
+    return v;
+}
+
+/// A smaller sweep than the default (0:85:5 x 5 thresholds) so the suite stays short; the README and the
+/// benchmark run the default.
+const char* kSweep = " --incidence 0:80:10 --thresholds 0.1,0.5,0.9 --json";
+
+}  // namespace
+
+TEST_CASE("cli::fit: each built-in model's table is fitted back to its model (rank 1) and parameter within 1%") {
+    hilite_test::TempDir dir("hilite-fit");
+    struct Case {
+        std::string model, param;
+        double value;
+    };
+    const Case cases[] = {{"phong", "exponent", 200}, {"blinn", "exponent", 300}, {"beckmann", "roughness", 0.08}, {"ggx", "roughness", 0.1}};
+    for (const Case& c : cases) {
+        CAPTURE(c.model);
+        const std::string file = dir / (c.model + ".binary");
+        std::ostringstream v;
+        v << c.value;
+        REQUIRE(hilite_test::hilite("brdf tabulate --model " + c.model + " --" + c.param + " " + v.str() + " -o " + file).code == 0);
+        const auto r = hilite_test::hilite("fit --target " + file + kSweep, true);
+        REQUIRE(r.code == 0);
+        const auto fits = jsonLines(r.out);
+        REQUIRE(fits.size() == 4);
+        std::map<std::string, nlohmann::json> by;
+        for (const auto& f : fits) by[f["model"]] = f;
+        const auto& own = by.at(c.model);
+        MESSAGE(c.model << " " << c.value << ": fitted " << own["params"].dump() << ", residual " << own["residual"]
+                        << "; the others: " << [&] {
+                               std::string s;
+                               for (const auto& [m, f] : by) s += m + " " + f["residual"].dump() + " ";
+                               return s;
+                           }());
+        CHECK(own["rank"] == 1);
+        const double got = own["params"][c.param].get<double>();
+        CHECK(std::abs(got / c.value - 1) < 0.01);
+        for (const auto& [m, f] : by) CHECK(f["params"].contains(m == "phong" || m == "blinn" ? "exponent" : "roughness"));
+    }
+}
+
+TEST_CASE("cli::fit: Phong fitted to a GGX table leaves an aspect residual that grows with incidence") {
+    hilite_test::TempDir dir("hilite-fit-phong");
+    const std::string file = dir / "ggx.binary";
+    REQUIRE(hilite_test::hilite("brdf tabulate --model ggx --roughness 0.1 -o " + file).code == 0);
+    const auto r = hilite_test::hilite("fit --target " + file + " --models phong,ggx --incidence 0:80:10 -o " + (dir / "out") +
+                                       " --json", true);
+    REQUIRE(r.code == 0);
+    const auto fits = jsonLines(r.out);
+    REQUIRE(fits.size() == 2);
+    const auto& phong = fits[0];
+    REQUIRE(phong["model"] == "phong");
+    const auto& res = phong["aspect_residual"];
+    REQUIRE(res.size() == 9);
+    MESSAGE("phong's aspect residual, 0..80 deg: " << res.dump());
+    CHECK(std::abs(res[0].get<double>()) < 1e-3);  // round at normal incidence, both
+    for (size_t i = 1; i < res.size(); ++i) CHECK(res[i].get<double>() > res[i - 1].get<double>());
+    // Phong stays round while GGX narrows towards cos(theta_i): at 80 deg the residual is most of 1 - cos.
+    CHECK(res[8].get<double>() > 0.5 * (1 - std::cos(80 * M_PI / 180)));
+    CHECK(fits[1]["rank"] == 1);
+    for (const char* f : {"fit.json", "fit.csv"}) CHECK(std::filesystem::exists(std::filesystem::path(dir / "out") / f));
+}
+
+TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, nothing written") {
+    hilite_test::TempDir dir("hilite-fit-bad");
+    const std::string out = dir / "out";
+    struct Case {
+        std::string args, message;
+    };
+    const Case cases[] = {
+        {"--model ggx --models phong,foo", "--models: 'foo' is not a model"},
+        {"--model ggx --models none", "--models: 'none' is not a model"},
+        {"--model ggx --thresholds 0.1,1.5", "--thresholds: each must be in (0, 1)"},
+        {"--model ggx --thresholds 0.1,x", "--thresholds: 'x' is not a number"},
+        {"--model ggx --weights 1,2", "--weights: one per threshold (5), got 2"},
+        {"--model ggx --weights 0,0,0,0,0", "--weights: at least one must be > 0"},
+        {"--target " + (dir / "x.txt"), "--target: '"},
+        {"--target " + (dir / "missing.binary"), "--target: cannot read"},
+        {"--model ggx --models phong --fit-anisotropy", "--fit-anisotropy: needs beckmann or ggx"},
+        {"--model ggx --roughness -1", "--roughness"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.args);
+        const auto r = hilite_test::hilite("fit " + c.args + " -o " + out);
+        CHECK(r.code == 2);
+        CHECK(hilite_test::lines(r.out) == 1);
+        CHECK(r.out.find(c.message) != std::string::npos);
+        CHECK(!std::filesystem::exists(out));
+    }
+}
