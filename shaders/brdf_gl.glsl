@@ -80,8 +80,9 @@ vec3 F_Spectral(float cosTheta_i, vec2 etaK[HILITE_SPECTRAL_SAMPLES], vec3 weigh
 //@block Measured needs common angleFromSinCos
 // A measured MERL table (src/brdf/merl.hpp, the double CPU twin): f(wi, wo) from a 3D RGB32F texture of
 // 180 (phi_d) x 90 (theta_d) x 90 (theta_h) texels holding entry x channel scale, negative for "no data".
-// The same half/difference angles, bin coordinates and multilinear weights as merl.cpp, by texelFetch: the
-// 8 corners with data weighted and renormalized (a GL_LINEAR filter would blend "no data" in).
+// The same half/difference angles, bin coordinates and weights as merl.cpp (cubic, else multilinear), by
+// texelFetch: the multilinear corners with data weighted and renormalized (a GL_LINEAR filter would blend
+// "no data" in).
 uniform sampler3D uMeasured;
 // atan2(|y|, x) in [0, pi] from angleFromSinCos (GLSL's atan is ~1e-6 rad on llvmpipe).
 float measuredAngle(float y, float x) {
@@ -122,7 +123,35 @@ vec3 measuredBrdf(vec3 wi, vec3 wo) {
     float phiD = d.y >= 0.0 ? a : PI - a;
     float uh = thetaH <= 0.0 ? 0.0 : sqrt(thetaH / (0.5 * PI)) * 90.0;
     float ud = thetaD / (0.5 * PI) * 90.0, up = phiD / PI * 180.0;
-    vec3 wh = measuredAxis(uh, 90, false), wd = measuredAxis(ud, 90, false), wp = measuredAxis(up, 180, true);
+    vec3 wd = measuredAxis(ud, 90, false), wp = measuredAxis(up, 180, true);
+    // merl::cubicWeights: Catmull-Rom along theta_h over four bins mirrored at the edges, linear along theta_d
+    // and phi_d; any of the 16 bins without data: the multilinear lookup below.
+    float sh = uh - 0.5;
+    int hb[4];
+    vec4 hw = vec4(0.0, 1.0, 0.0, 0.0);
+    if (sh >= 89.0) {
+        hb[0] = 89; hb[1] = 89; hb[2] = 89; hb[3] = 89;
+    } else {
+        float fh = floor(max(sh, -1.0)), t = max(sh, -1.0) - fh;
+        for (int k = 0; k < 4; ++k) {
+            int b = int(fh) - 1 + k;
+            hb[k] = b < 0 ? -b - 1 : (b >= 90 ? 179 - b : b);
+        }
+        float t2 = t * t, t3 = t2 * t;
+        hw = 0.5 * vec4(-t3 + 2.0 * t2 - t, 3.0 * t3 - 5.0 * t2 + 2.0, -3.0 * t3 + 4.0 * t2 + t, t3 - t2);
+    }
+    vec3 cubic = vec3(0.0);
+    bool complete = true;
+    for (int k = 0; k < 16 && complete; ++k) {
+        int ah = k >> 2, ad = (k >> 1) & 1, ap = k & 1;
+        float w = hw[ah] * (ad == 1 ? wd.z : 1.0 - wd.z) * (ap == 1 ? wp.z : 1.0 - wp.z);
+        if (w == 0.0) continue;
+        vec3 f = texelFetch(uMeasured, ivec3(int(ap == 1 ? wp.y : wp.x), int(ad == 1 ? wd.y : wd.x), hb[ah]), 0).rgb;
+        if (f.r < 0.0 || f.g < 0.0 || f.b < 0.0) complete = false;  // no data
+        cubic += w * f;
+    }
+    if (complete) return max(cubic, vec3(0.0));
+    vec3 wh = measuredAxis(uh, 90, false);
     vec3 sum = vec3(0.0);
     float weight = 0.0;
     for (int k = 0; k < 8; ++k) {

@@ -15,7 +15,9 @@
 
 namespace hilite::brdf::merl {
 
-const char* toString(Interpolation i) { return i == Interpolation::Nearest ? "nearest" : "multilinear"; }
+const char* toString(Interpolation i) {
+    return i == Interpolation::Nearest ? "nearest" : i == Interpolation::Multilinear ? "multilinear" : "cubic";
+}
 
 HalfDiff toHalfDiff(const dvec3& wi, const dvec3& wo) {
     HalfDiff a;
@@ -92,6 +94,25 @@ AxisWeights axisWeights(double u, int bins, bool wrap) {
     return w;
 }
 
+CubicWeights cubicWeights(double u, int bins) {
+    CubicWeights c;  // bin 0 alone: for NaN, as multilinear
+    const double s = u - 0.5;  // in units of bins from the first centre
+    if (!(s == s)) return c;
+    if (s >= bins - 1) {  // beyond the last centre: the edge bin, as multilinear
+        for (int& b : c.bin) b = bins - 1;
+        return c;
+    }
+    const double f = std::floor(std::max(s, -1.0)), t = std::max(s, -1.0) - f;  // u >= 0: s >= -0.5
+    auto mirror = [bins](int k) { return k < 0 ? -k - 1 : (k >= bins ? 2 * bins - k - 1 : k); };
+    for (int k = 0; k < 4; ++k) c.bin[k] = mirror(int(f) - 1 + k);
+    const double t2 = t * t, t3 = t2 * t;
+    c.w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+    c.w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+    c.w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+    c.w[3] = 0.5 * (t3 - t2);
+    return c;
+}
+
 namespace {
 
 /// The weighted sum over the bins a lookup uses, and the weight that fell on bins with data.
@@ -108,8 +129,30 @@ Gathered gather(const MeasuredBrdf& m, double thetaH, double thetaD, double phiD
         if (m.hasData(i)) g = {m.bin(i), 1.0};
         return g;
     }
-    const AxisWeights h = axisWeights(uh, kThetaHBins, false), d = axisWeights(ud, kThetaDBins, false),
-                      p = axisWeights(up, kPhiDBins, true);
+    const AxisWeights d = axisWeights(ud, kThetaDBins, false), p = axisWeights(up, kPhiDBins, true);
+    if (how == Interpolation::Cubic) {
+        const CubicWeights h = cubicWeights(uh, kThetaHBins);
+        bool complete = true;
+        for (int a = 0; a < 4 && complete; ++a)
+            for (int b = 0; b < 2 && complete; ++b)
+                for (int c = 0; c < 2; ++c) {
+                    const double w = h.w[a] * (b ? d.t : 1 - d.t) * (c ? p.t : 1 - p.t);
+                    if (w == 0.0) continue;
+                    const std::size_t i = flatIndex(h.bin[a], b ? d.hi : d.lo, c ? p.hi : p.lo);
+                    if (!m.hasData(i)) {
+                        complete = false;
+                        break;
+                    }
+                    g.sum += w * m.bin(i);
+                }
+        if (complete) {
+            g.sum = glm::max(g.sum, dvec3(0.0));
+            g.weight = 1.0;
+            return g;
+        }
+        g = Gathered{};  // a bin without data among the 16: the multilinear lookup's renormalized corners
+    }
+    const AxisWeights h = axisWeights(uh, kThetaHBins, false);
     for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b)
             for (int c = 0; c < 2; ++c) {
@@ -228,6 +271,70 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
     auto table = std::make_shared<const MeasuredBrdf>(read(path, what));  // throws before the cache changes
     cache[path] = Entry{size, mtime, table};
     return table;
+}
+
+namespace {
+
+/// One axis of halfResolution: `stride` apart in the flat index, `bins` long, `cubic` for theta_h.
+void halveAxis(MeasuredBrdf& m, std::size_t stride, int bins, bool wrap, bool cubic, int parity) {
+    const std::size_t outer = kEntries / (stride * std::size_t(bins));
+    std::vector<double> line(std::size_t(bins) * 3);
+    std::vector<char> has(static_cast<std::size_t>(bins));
+    for (std::size_t o = 0; o < outer; ++o)
+        for (std::size_t in = 0; in < stride; ++in) {
+            const std::size_t base = o * stride * std::size_t(bins) + in;
+            for (int i = 0; i < bins; ++i) {
+                const std::size_t at = base + std::size_t(i) * stride;
+                has[std::size_t(i)] = m.hasData(at);
+                for (int c = 0; c < 3; ++c) line[3 * std::size_t(i) + std::size_t(c)] = m.entry(c, at);
+            }
+            auto tap = [&](int k) { return wrap ? ((k % bins) + bins) % bins : k; };
+            auto ok = [&](int k) { return (wrap || (k >= 0 && k < bins)) && has[std::size_t(tap(k))]; };
+            for (int i = parity; i < bins; i += 2) {
+                double v[3];
+                const bool four = cubic && ok(i - 3) && ok(i - 1) && ok(i + 1) && ok(i + 3);
+                int n = 0;
+                for (int c = 0; c < 3; ++c) {
+                    auto e = [&](int k) { return line[3 * std::size_t(tap(k)) + std::size_t(c)]; };
+                    if (four) {
+                        v[c] = (9.0 * (e(i - 1) + e(i + 1)) - (e(i - 3) + e(i + 3))) / 16.0;
+                    } else {
+                        double sum = 0;
+                        n = 0;
+                        for (int k : {i - 1, i + 1})
+                            if (ok(k)) sum += e(k), ++n;
+                        v[c] = n ? sum / n : kNoData;
+                    }
+                }
+                if (!four && n == 0) continue;  // no even neighbour with data: the bin stays as it was
+                const std::size_t at = base + std::size_t(i) * stride;
+                for (int c = 0; c < 3; ++c) m.raw[std::size_t(c) * kEntries + at] = std::max(v[c], 0.0);
+            }
+        }
+}
+
+}  // namespace
+
+std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const MeasuredBrdf>& table, int axis, int parity) {
+    struct Entry {
+        std::weak_ptr<const MeasuredBrdf> table;
+        int axis, parity;
+        std::shared_ptr<const MeasuredBrdf> half;
+    };
+    static std::mutex mutex;
+    static std::vector<Entry> cache;
+    const std::lock_guard<std::mutex> lock(mutex);
+    cache.erase(std::remove_if(cache.begin(), cache.end(), [](const Entry& e) { return e.table.expired(); }), cache.end());
+    for (const Entry& e : cache)
+        if (e.axis == axis && e.parity == parity && e.table.lock() == table) return e.half;
+    auto half = std::make_shared<MeasuredBrdf>(*table);
+    static const char* const names[] = {"theta_h", "theta_d", "phi_d"};
+    half->path = table->path + " (half resolution in " + names[std::clamp(axis, 0, 2)] + (parity ? ", odd bins" : ", even bins") + " interpolated)";
+    if (axis == 2) halveAxis(*half, 1, kPhiDBins, true, false, parity);
+    else if (axis == 1) halveAxis(*half, std::size_t(kPhiDBins), kThetaDBins, false, false, parity);
+    else halveAxis(*half, std::size_t(kPhiDBins) * kThetaDBins, kThetaHBins, false, true, parity);
+    cache.push_back({table, axis, parity, half});
+    return half;
 }
 
 std::string encode(const MeasuredBrdf& table) {

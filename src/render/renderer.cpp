@@ -65,8 +65,8 @@ std::vector<std::string> activeEffects(const Scene& scene) {
     if (scene.brdf.measured) {  // the table is the whole BRDF: no analytic term runs
         const brdf::merl::MeasuredBrdf& m = *scene.brdf.measured;
         std::ostringstream s;
-        s << "measured MERL table " << m.path << ": 90 x 90 x 180 bins (theta_h, theta_d, phi_d), multilinear "
-          << "between bin centres, " << m.noData << " bins without data (their weight renormalized away); no "
+        s << "measured MERL table " << m.path << ": 90 x 90 x 180 bins (theta_h, theta_d, phi_d), cubic in theta_h "
+          << "and linear in theta_d, phi_d between bin centres (multilinear where a bin lacks data), " << m.noData << " bins without data (their weight renormalized away); no "
           << "analytic lobe, Fresnel, geometry or diffuse term";
         out.insert(out.begin(), s.str());
     }

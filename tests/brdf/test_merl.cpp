@@ -214,44 +214,43 @@ TEST_CASE("merl: tabulate -> encode -> parse round trip returns brdf::evaluate a
     CHECK(worstLinear < 1e-9);
 }
 
-TEST_CASE("merl: off the bin centres, multilinear beats nearest against the analytic GGX 0.1") {
+TEST_CASE("merl: off the bin centres, cubic beats multilinear beats nearest against the analytic GGX 0.1") {
     const merl::MeasuredBrdf& t = ggxTable();
     const brdf::Params p = ggxParams();
+    const merl::Interpolation modes[3] = {merl::Interpolation::Nearest, merl::Interpolation::Multilinear,
+                                          merl::Interpolation::Cubic};
     // Light at theta_i, viewer a few degrees off the mirror direction, in and across the plane of incidence:
     // where the lobe is, and where a MERL table's bins are the finest (theta_h's sqrt mapping).
-    double lumErr[2] = {0, 0};
+    double lumErr[3] = {0, 0, 0};
     for (double ti : {0.0, 20.0, 40.0, 60.0, 80.0}) {
-        double worst[2] = {0, 0};
+        double worst[3] = {0, 0, 0};
         for (double dTheta : {-7.3, -3.1, -1.2, -0.37, 0.0, 0.41, 1.3, 2.9, 6.7})
             for (double dPhi : {0.0, 1.7, 4.1}) {
                 const double to = std::clamp(ti + dTheta, 0.2, 85.0);
                 const dvec3 wi = sphericalDirectionDeg(ti, 0.0), wo = sphericalDirectionDeg(to, 180.0 + dPhi);
                 const double want = brdf::luminance(brdf::evaluate(p, wi, wo));
-                for (int k = 0; k < 2; ++k) {
-                    const auto how = k ? merl::Interpolation::Multilinear : merl::Interpolation::Nearest;
-                    const double got = brdf::luminance(t.evaluate(wi, wo, how));
+                for (int k = 0; k < 3; ++k) {
+                    const double got = brdf::luminance(t.evaluate(wi, wo, modes[k]));
                     worst[k] = std::max(worst[k], std::abs(got - want) / want);
                 }
             }
         MESSAGE("theta_i " << ti << ": worst relative luminance error nearest " << worst[0] << ", multilinear "
-                           << worst[1]);
-        for (int k = 0; k < 2; ++k) lumErr[k] = std::max(lumErr[k], worst[k]);
+                           << worst[1] << ", cubic " << worst[2]);
+        for (int k = 0; k < 3; ++k) lumErr[k] = std::max(lumErr[k], worst[k]);
     }
     CHECK(lumErr[1] < lumErr[0]);
+    CHECK(lumErr[2] < lumErr[1]);
     // Over the whole upper hemisphere (both directions within 80 deg), relative to the value and to the peak.
     std::mt19937 g(11);
-    double rel[2] = {0, 0};
+    double rel[3] = {0, 0, 0};
     for (int n = 0; n < 20000; ++n) {
         const dvec3 wi = randomUpper(g, 80), wo = randomUpper(g, 80);
         const double want = brdf::luminance(brdf::evaluate(p, wi, wo));
-        for (int k = 0; k < 2; ++k) {
-            const double got =
-                brdf::luminance(t.evaluate(wi, wo, k ? merl::Interpolation::Multilinear : merl::Interpolation::Nearest));
-            rel[k] = std::max(rel[k], std::abs(got - want) / want);
-        }
+        for (int k = 0; k < 3; ++k)
+            rel[k] = std::max(rel[k], std::abs(brdf::luminance(t.evaluate(wi, wo, modes[k])) - want) / want);
     }
     MESSAGE("random pairs within 80 deg: worst relative luminance error nearest " << rel[0] << ", multilinear "
-                                                                                  << rel[1]);
+                                                                                  << rel[1] << ", cubic " << rel[2]);
     CHECK(rel[1] < rel[0]);
 }
 
@@ -261,7 +260,7 @@ TEST_CASE("merl: the lookup is reciprocal bit for bit, and 0 below the horizon")
     int differ = 0;
     for (int n = 0; n < 20000; ++n) {
         const dvec3 wi = randomUpper(g, 89.9), wo = randomUpper(g, 89.9);
-        for (auto how : {merl::Interpolation::Nearest, merl::Interpolation::Multilinear})
+        for (auto how : {merl::Interpolation::Nearest, merl::Interpolation::Multilinear, merl::Interpolation::Cubic})
             differ += t.evaluate(wi, wo, how) != t.evaluate(wo, wi, how);
     }
     CHECK(differ == 0);
