@@ -8,7 +8,9 @@
 //   --benchmark_filter=View                 GL float path against the CPU double path, same pixels, all cores
 //   --benchmark_filter=Session              the library route of the Python module: Values -> resolve -> Session
 
+#include "brdf/merl.hpp"
 #include "brdf/spectral.hpp"
+#include "experiments/fit.hpp"
 #include "measurement/measure_scene.hpp"
 #include "measurement/session.hpp"
 #include "measurement/tolerance.hpp"
@@ -21,6 +23,8 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <thread>
 
@@ -256,6 +260,32 @@ void BM_SessionSweep86(benchmark::State& state) {
     state.counters["rows/s"] = benchmark::Counter(86.0 * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SessionSweep86)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// `hilite fit`'s default job: phong, blinn, beckmann and ggx fitted to a GGX 0.1 MERL table over 18 angles
+/// (0:85:5) x 5 thresholds at 256^2 (the target: under 30 s). One iteration: a fit is seconds long.
+void BM_Fit4Models(benchmark::State& state) {
+    const std::string file = (std::filesystem::temp_directory_path() / "hilite-bench-ggx.binary").string();
+    {
+        brdf::Params p;
+        p.model = brdf::Model::GGX;
+        p.roughness = 0.1;
+        const std::string bytes = brdf::merl::encode(brdf::merl::tabulate(p));
+        std::ofstream(file, std::ios::binary) << bytes;
+    }
+    scene::Values values;
+    values.set("measured", file);
+    values.set("incidence", "0:85:5");
+    values.set("size", "256");
+    measurement::Session session;
+    double evaluations = 0;
+    for (auto _ : state) {
+        const experiments::FitResult r = experiments::fitModels(session, values, experiments::FitOptions{});
+        for (const auto& f : r.fits) evaluations += f.evaluations;
+    }
+    state.counters["sweeps"] = evaluations / double(state.iterations());
+    std::filesystem::remove(file);
+}
+BENCHMARK(BM_Fit4Models)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 

@@ -24,6 +24,8 @@
 
 namespace hilite::experiments {
 
+namespace fs = std::filesystem;
+
 namespace {
 
 std::string readText(const std::string& path) { return scene::readTextFile(path, "experiment"); }
@@ -237,16 +239,49 @@ void addValues(SweepAxis& axis, const toml::array& values, const std::string& fi
 }
 
 SweepAxis parseAxis(const toml::table& t, const std::string& file) {
-    const Fields f(t, file, "sweep", {"key", "values", "range", "cases"});
+    const Fields f(t, file, "sweep", {"key", "values", "range", "cases", "folder"});
     SweepAxis axis;
     const auto key = f.string("key");
     if (!key || key->empty()) f.fail("key", "needs key = \"table.key\" (a scene key, e.g. light.incidence)");
     axis.key = *key;
     int given = 0;
-    for (const char* k : {"values", "range", "cases"}) given += f.node(k) != nullptr;
+    for (const char* k : {"values", "range", "cases", "folder"}) given += f.node(k) != nullptr;
     if (given != 1)
         f.fail(given ? "values" : "key", std::string(given ? "give only one of" : "needs one of") +
-                                            " values = [...], range = [start, stop, step] or cases = [{ name = ..., ... }]");
+                                            " values = [...], range = [start, stop, step], cases = [{ name = ..., ... }] "
+                                            "or folder = \"DIR\" (a file key's files)");
+    if (f.node("folder")) {
+        // Every file of the key's kind in a folder beside the experiment file, in name order (a MERL table folder
+        // for fit_models): .binary for material.measured, .brdf for material.brdf.
+        const scene::Param* p = scene::find(axis.key.substr(axis.key.find('.') + 1));
+        const bool measured = axis.key == "material.measured", brdfKey = axis.key == "material.brdf";
+        if (!p || !(measured || brdfKey))
+            f.fail("folder", "lists files for material.measured (.binary) or material.brdf (.brdf), not " + axis.key);
+        const std::string folder = *f.string("folder");
+        if (folder.empty()) f.fail("folder", "an empty folder name");
+        const auto slash = file.rfind('/');
+        const std::string base = slash == std::string::npos ? std::string() : file.substr(0, slash + 1);
+        const std::string dir = folder.front() == '/' ? folder : base + folder;
+        std::error_code ec;
+        if (!fs::is_directory(dir, ec)) f.fail("folder", "'" + printable(dir) + "' is not a folder");
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(dir, ec))
+            if (entry.is_regular_file(ec) && entry.path().extension() == (measured ? ".binary" : ".brdf"))
+                names.push_back(entry.path().filename().string());
+        std::sort(names.begin(), names.end());
+        if (names.empty())
+            f.fail("folder", "'" + printable(dir) + "' holds no " + (measured ? ".binary" : ".brdf") + " file" +
+                                 (measured ? " (MERL tables: https://www.merl.com/brdf/, or hilite brdf tabulate)" : ""));
+        const std::string origin = f.at("folder");
+        for (const std::string& n : names) {
+            const std::string path = (dir.back() == '/' ? dir : dir + "/") + n;
+            scene::Values one;
+            one.set(p->name, path, origin);
+            axis.values.push_back(path);
+            axis.entries.push_back(one);
+        }
+        return axis;
+    }
     if (f.node("range")) {
         const std::vector<double> r = f.numbers("range");
         if (r.size() != 3 || !(r[2] > 0) || r[1] < r[0]) f.fail("range", "range = [start, stop, step], start <= stop, step > 0");
@@ -336,6 +371,49 @@ std::vector<const toml::table*> tables(const toml::table& doc, const std::string
 }
 
 /// [reference], [timing] and [pareto]: the tables of an accuracy/cost study.
+/// [fit]: the options of `hilite fit` (experiments/fit.hpp), each checked where it is written.
+void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
+    const auto* t = table(doc, path, "fit");
+    if (!t) return;
+    const Fields f(*t, path, "fit", {"models", "thresholds", "weights", "anisotropy", "f0", "geometry", "fresnel",
+                                     "max_evaluations"});
+    FitOptions o;
+    if (f.node("models")) o.models = f.strings("models");
+    if (f.node("thresholds")) o.thresholds = f.numbers("thresholds");
+    if (f.node("weights")) o.weights = f.numbers("weights");
+    o.anisotropy = f.boolean("anisotropy", false);
+    o.f0 = f.boolean("f0", false);
+    o.geometry = f.string("geometry", "");
+    static const std::vector<std::string> geometries = {"none", "implicit", "cook-torrance", "smith-separable", "smith"};
+    if (!o.geometry.empty() && std::find(geometries.begin(), geometries.end(), o.geometry) == geometries.end())
+        f.fail("geometry", "'" + printable(o.geometry) + "' (allowed: " + join(geometries) + ")");
+    o.fresnel = f.string("fresnel", "");
+    if (!o.fresnel.empty() && o.fresnel != "none" && o.fresnel != "schlick")
+        f.fail("fresnel", "'" + printable(o.fresnel) + "' (allowed: none, schlick)");
+    if (f.node("max_evaluations")) {
+        const auto n = f.numbers("max_evaluations");
+        if (n.size() != 1 || !(n[0] >= 1 && n[0] <= 10000) || n[0] != std::floor(n[0]))
+            f.fail("max_evaluations", "an integer in [1, 10000]");
+        o.maxEvaluations = int(n[0]);
+    }
+    try {
+        checkFitOptions(o);
+    } catch (const InputError& err) {  // "--models: ..." as the flag says it: here the key says it
+        const std::string m = err.what();
+        const auto colon = m.find(": ");
+        if (m.rfind("--", 0) != 0 || colon == std::string::npos) f.fail("models", m);
+        std::string key = m.substr(2, colon - 2);  // --fit-anisotropy -> anisotropy, --models -> models
+        std::replace(key.begin(), key.end(), '-', '_');
+        if (key.rfind("fit_", 0) == 0) key = key.substr(4);
+        f.fail(key, m.substr(colon + 2));
+    }
+    for (const char* other : {"match", "reference", "timing", "pareto"})
+        if (doc.contains(other))
+            throw InputError(path + ": [" + std::string(other) + "]: not with [fit] (a fit row ranks models; it measures "
+                                                                 "no single scene)");
+    e.fit = o;
+}
+
 void parseErrorTables(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
     if (const auto* ref = table(doc, path, "reference")) e.referenceErrors = Fields(*ref, path, "reference", {"errors"}).boolean("errors", true);
     if (const auto* timing = table(doc, path, "timing")) {
@@ -368,7 +446,7 @@ namespace {
 /// Every top-level table must be one an experiment has.
 void checkTables(const toml::table& doc, const std::string& path) {
     static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
-                                                     "contact_sheet", "strip", "summary", "reference", "timing", "pareto"};
+                                                     "contact_sheet", "strip", "summary", "reference", "timing", "pareto", "fit"};
     for (const auto& [k, v] : doc) {
         const std::string name(k.str());
         if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
@@ -509,6 +587,11 @@ std::vector<std::string> rowColumns(const Experiment& e) {
         for (const char* c : {"ref_aspect", "ref_major_deg", "ref_minor_deg", "aspect_error", "major_error", "minor_error"}) add(c);
     if (e.timing)
         for (const char* c : {"time_ms", "repeats", "error_estimate"}) add(c);
+    if (e.fit) {
+        for (const char* c : {"target", "best_model", "best_residual", "best_params", "fit_time_ms"}) add(c);
+        for (const std::string& m : e.fit->models)
+            for (const char* c : {"_residual", "_rank", "_params"}) add(m + c);
+    }
     return out;
 }
 
@@ -586,6 +669,7 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
     parseStrips(doc, path, e, names);
     parseSummary(doc, path, e);
     parseErrorTables(doc, path, e, names);
+    parseFit(doc, path, e);
     checkFields(e, doc);
     return e;
 }
@@ -636,7 +720,9 @@ Configurations Experiment::configurations() const {
         const Configuration c = configs[i];
         scene::Values all = c.values;
         all.merge(c.reference);
-        if (scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
+        if (fit)  // a fit sweeps the incidences itself: its target's and models' scenes checked now
+            checkFitScenes(all, *fit);
+        else if (scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
             throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
         if ((i & 1023) == 0 || i + 1 == configs.size()) {
             const auto now = std::chrono::steady_clock::now();

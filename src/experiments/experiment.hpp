@@ -3,6 +3,7 @@
 // scene file), [[sweep]] axes (key + values or range), optional [match] (lobe widths matched at normal
 // incidence), [[plot]], [contact_sheet] and [summary]. See experiments/*.toml and the README.
 
+#include "experiments/fit.hpp"
 #include "experiments/pareto.hpp"
 #include "experiments/plot.hpp"
 #include "gl/context.hpp"
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -64,6 +66,8 @@ struct Experiment {
     int repeats = 1, warmup = 0;   ///< [timing]: each configuration measured warmup + repeats times
     bool timing = false;           ///< [timing] present: rows get time_ms, the median of the repeats
     std::vector<ParetoSpec> pareto;
+    /// [fit]: each configuration is a fit target (experiments/fit.hpp), its row the ranking of the models.
+    std::optional<FitOptions> fit;
 
     /// Every configuration, validated (a bad value anywhere fails before anything runs); validation longer
     /// than a second reports its progress on stderr.
@@ -131,6 +135,8 @@ public:
     /// [match]: each model's width parameter tuned so that its semi-major axis at normal incidence equals the
     /// target's; sets it in `values` and `row["matched_parameter"]`.
     void applyMatch(scene::Values& values, nlohmann::json& row);
+    /// [fit]: the configuration is a fit target; its row ranks the models (experiments/fit.hpp).
+    nlohmann::json fitRow(const scene::Values& values, nlohmann::json& row);
     /// A photo view of the scene `values` resolve to (the contact sheet's tiles).
     ImageF photo(const scene::Values& values, int width, int height);
     const Experiment& experiment() const { return m_exp; }

@@ -133,6 +133,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     row["fingerprint"] = fingerprint(m_exp, c);  // what --resume and merge check the row against
     for (const auto& [k, v] : c.tags.items()) row[k] = v;
     scene::Values values = c.values;
+    if (m_exp.fit) return fitRow(values, row);
     applyMatch(values, row);
     const scene::Resolved r = scene::resolve(values);
     if (r.angles.size() != 1)
@@ -157,6 +158,30 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
         row["repeats"] = repeats;
     }
     if (m_exp.referenceErrors) addErrors(row, reference(c, values));
+    nameNonFinite(row);
+    return row;
+}
+
+nlohmann::json ExperimentRunner::fitRow(const scene::Values& values, nlohmann::json& row) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const FitResult res = fitModels(m_session, values, *m_exp.fit);
+    const nlohmann::json columns = scene::parameterColumns(scene::resolve(values));
+    for (auto& [k, v] : columns.items())
+        if (k != "incidence_deg") row[k] = v;  // the fit sweeps incidence: no one angle is the row's
+    row["target"] = res.target;
+    for (size_t k = 0; k < res.fits.size(); ++k) {
+        const ModelFit& f = res.fits[k];
+        const std::string& name = m_exp.fit->models[k];  // the column names rowColumns() gave
+        row[name + "_residual"] = f.residual;
+        row[name + "_rank"] = f.rank;
+        row[name + "_params"] = f.params.dump();
+        if (f.rank == 1) {
+            row["best_model"] = name;
+            row["best_residual"] = f.residual;
+            row["best_params"] = f.params.dump();
+        }
+    }
+    row["fit_time_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     nameNonFinite(row);
     return row;
 }

@@ -313,8 +313,9 @@ void checkFitOptions(const FitOptions& o) {
         throw InputError("--fit-f0: fits Schlick's F0, not with --fit-fresnel " + o.fresnel);
 }
 
-FitResult fitModels(measurement::Session& session, const scene::Values& target, const FitOptions& o) {
-    checkFitOptions(o);
+namespace {
+
+FitResult emptyResult(const scene::Values& target, const FitOptions& o) {
     FitResult r;
     r.target = targetText(target);
     r.thresholds = o.thresholds;
@@ -323,14 +324,30 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
     r.aspectThreshold = *std::min_element(r.thresholds.begin(), r.thresholds.end(), [](double a, double b) {
         return std::abs(a - 0.5) < std::abs(b - 0.5);
     });
+    return r;
+}
+
+}  // namespace
+
+void checkFitScenes(const scene::Values& target, const FitOptions& o) {
+    checkFitOptions(o);
+    const FitResult r = emptyResult(target, o);
+    sweepScenes(target, r);
+    const scene::Values common = withoutMaterial(target);
+    for (const std::string& m : o.models) {
+        const Space s = spaceOf(m, o);
+        sweepScenes(modelValues(common, s, o, {s.guess, 0.0, 0.04}), r);
+    }
+}
+
+FitResult fitModels(measurement::Session& session, const scene::Values& target, const FitOptions& o) {
     // Every scene resolved before the first measurement: the target's, and each model's at its start.
+    checkFitScenes(target, o);
+    FitResult r = emptyResult(target, o);
     const auto targetScenes = sweepScenes(target, r);
     const scene::Values common = withoutMaterial(target);
     std::vector<Space> spaces;
-    for (const std::string& m : o.models) {
-        spaces.push_back(spaceOf(m, o));
-        sweepScenes(modelValues(common, spaces.back(), o, {spaces.back().guess, 0.0, 0.04}), r);
-    }
+    for (const std::string& m : o.models) spaces.push_back(spaceOf(m, o));
     r.samples = measureSweep(session, targetScenes, r);
     if (std::none_of(r.samples.begin(), r.samples.end(), [](const FitSample& s) { return s.usable; }))
         throw InputError("fit: the target shows no measurable highlight at any incidence and threshold (" +
@@ -360,6 +377,7 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
         opt.set_upper_bounds(hi);
         opt.set_initial_step(step);
         opt.set_xtol_abs(o.xtolAbs);
+        opt.set_ftol_rel(1e-6);  // a flat residual (phong against a microfacet lobe) stops before xtol
         opt.set_maxeval(o.maxEvaluations);
         opt.set_min_objective(
             [](const std::vector<double>& xv, std::vector<double>&, void* data) {

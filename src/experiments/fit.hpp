@@ -65,6 +65,10 @@ struct FitResult {
 /// weights as many as thresholds and >= 0 with a positive sum, anisotropy/f0 only where a model takes them.
 void checkFitOptions(const FitOptions& o);
 
+/// Resolves the target's scenes and each model's (at its starting width) as fitModels will: InputError for any
+/// that does not resolve, before anything is measured.
+void checkFitScenes(const scene::Values& target, const FitOptions& o);
+
 /// Fits every model of `o` to the target scene `target` (its material is the target: --measured, --brdf or
 /// --model ...; the light, camera and measurement keys apply to every model too). Every scene is resolved
 /// before the first measurement (InputError).

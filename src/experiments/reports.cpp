@@ -9,6 +9,7 @@
 #include "measurement/row.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -151,6 +152,40 @@ void header(ExperimentRunner& runner, size_t rows, double seconds, Report& out) 
     }
 }
 
+/// [fit]: the ranking, a line per target, and how often each model came first.
+std::string fitSection(const Experiment& e, const Rows& rows) {
+    std::ostringstream md;
+    md << "## Which model fits\n\nEach row: the models fitted to the target's highlight over its incidences and the thresholds ";
+    for (size_t j = 0; j < e.fit->thresholds.size(); ++j) md << (j ? ", " : "") << e.fit->thresholds[j];
+    md << "; the residual is the weighted RMS of ln(fit / target) of the semi-axes (0.01: about 1% off), the rank in "
+          "brackets.\n\n| target |";
+    for (const auto& m : e.fit->models) md << " " << m << " |";
+    md << " best |\n|---|";
+    for (size_t k = 0; k < e.fit->models.size(); ++k) md << "---|";
+    md << "---|\n";
+    std::map<std::string, int> wins;
+    for (const auto& r : rows) {
+        md << "| " << r.value("target", std::string("?")) << " |";
+        for (const auto& m : e.fit->models) {
+            const auto res = r.find(m + "_residual");
+            const auto rank = r.find(m + "_rank");
+            char buf[64];
+            if (res != r.end() && res->is_number() && rank != r.end() && rank->is_number())
+                std::snprintf(buf, sizeof buf, " %.3e (%d) |", res->get<double>(), rank->get<int>());
+            else
+                std::snprintf(buf, sizeof buf, " - |");
+            md << buf;
+        }
+        const std::string best = r.value("best_model", std::string("-"));
+        md << " " << best << " " << r.value("best_params", std::string("")) << " |\n";
+        ++wins[best];
+    }
+    md << "\nFirst place:";
+    for (const auto& m : e.fit->models) md << " " << m << " " << wins[m] << ";";
+    md << " of " << rows.size() << " targets.\n\n";
+    return md.str();
+}
+
 }  // namespace
 
 const std::vector<std::string>& reportSections() {
@@ -176,6 +211,7 @@ void writeReports(ExperimentRunner& runner, const std::string& dir, const Rows& 
                << " (top to bottom, values at the left), columns = " << e.sheetColumnKey
                << " (left to right, values above); each tile is exposed to its own peak.\n\n";
     for (const auto& s : e.sections) out.md << (s == "shape" ? shapeSection(e, rows) : microSummary(rows));
+    if (e.fit) out.md << fitSection(e, rows);
     for (const auto& spec : e.pareto) {
         const auto points = paretoPoints(spec, rows);
         std::string why;

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -109,5 +111,57 @@ TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, n
         CHECK(hilite_test::lines(r.out) == 1);
         CHECK(r.out.find(c.message) != std::string::npos);
         CHECK(!std::filesystem::exists(out));
+    }
+}
+
+TEST_CASE("cli::fit: the fit_models experiment over a folder of tables writes the ranking; bad [fit] refused") {
+    hilite_test::TempDir dir("hilite-fit-exp");
+    std::filesystem::create_directories(std::filesystem::path(dir / "tables"));
+    REQUIRE(hilite_test::hilite("brdf tabulate --model blinn --exponent 300 -o " + (dir / "tables/a_blinn.binary")).code == 0);
+    REQUIRE(hilite_test::hilite("brdf tabulate --model ggx --roughness 0.1 -o " + (dir / "tables/b_ggx.binary")).code == 0);
+    { std::ofstream(dir / "tables/notes.txt") << "not a table"; }  // other files in the folder are not targets
+    const std::string head = "[experiment]\nname = \"fit_folder\"\n[scene.light]\nincidence = \"0:80:20\"\n"
+                             "[scene.camera]\nsize = \"128\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \"tables\"\n";
+    { std::ofstream(dir / "fit.toml") << head << "[fit]\nmodels = [\"blinn\", \"ggx\"]\nthresholds = [0.25, 0.75]\n"; }
+    const std::string out = dir / "out";
+    const auto r = hilite_test::hilite("run " + (dir / "fit.toml") + " -o " + out);
+    REQUIRE(r.code == 0);
+    std::ifstream rows(std::filesystem::path(out) / "results.jsonl");
+    std::vector<nlohmann::json> got;
+    for (std::string line; std::getline(rows, line);)
+        if (!line.empty()) got.push_back(nlohmann::json::parse(line));
+    REQUIRE(got.size() == 2);  // the two .binary files, in name order
+    CHECK(got[0]["target"].get<std::string>().find("a_blinn.binary") != std::string::npos);
+    CHECK(got[0]["best_model"] == "blinn");
+    CHECK(got[1]["best_model"] == "ggx");
+    CHECK(got[0]["blinn_rank"] == 1);
+    CHECK(got[1]["ggx_residual"].get<double>() < got[1]["blinn_residual"].get<double>());
+    std::ifstream summary(std::filesystem::path(out) / "summary.md");
+    const std::string md((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+    CHECK(md.find("## Which model fits") != std::string::npos);
+    CHECK(md.find("First place: blinn 1; ggx 1; of 2 targets.") != std::string::npos);
+
+    struct Case {
+        std::string text, message;
+    };
+    const Case bad[] = {
+        {head + "[fit]\nmodels = [\"blinn\", \"foo\"]\n", "fit.models: 'foo' is not a model"},
+        {head + "[fit]\nthresholds = [0.5, 2]\n", "fit.thresholds: each must be in (0, 1)"},
+        {head + "[fit]\nweights = [1]\n", "fit.weights: one per threshold"},
+        {head + "[fit]\ngeometry = \"bogus\"\n", "fit.geometry: 'bogus'"},
+        {head + "[fit]\nmodels = [\"ggx\"]\n[match]\nmaterial.model = \"ggx\"\n", "[match]: not with [fit]"},
+        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \"nowhere\"\n[fit]\n", "is not a folder"},
+        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \".\"\n[fit]\n", "holds no .binary file"},
+        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.roughness\"\nfolder = \"tables\"\n[fit]\n", "folder: lists files for"},
+    };
+    for (const Case& c : bad) {
+        CAPTURE(c.text);
+        { std::ofstream(dir / "bad.toml") << c.text; }
+        const std::string badOut = dir / "bad_out";
+        const auto b = hilite_test::hilite("run " + (dir / "bad.toml") + " -o " + badOut);
+        CHECK(b.code == 2);
+        CHECK(hilite_test::lines(b.out) == 1);
+        CHECK(b.out.find(c.message) != std::string::npos);
+        CHECK(!std::filesystem::exists(badOut));
     }
 }
