@@ -230,6 +230,14 @@ scene::Values modelValues(const scene::Values& common, const Space& s, const Fit
     return v;
 }
 
+/// The space's parameters at ln(width) w, isotropic, with Schlick's F0 of 0.04 (where the space has them).
+std::vector<double> pointAt(const Space& s, double w) {
+    std::vector<double> x{w};
+    if (s.aniso) x.push_back(0.0);
+    if (s.f0) x.push_back(0.04);
+    return x;
+}
+
 /// A start for ln(width): the model whose twin half-width at the first angle and the threshold nearest 0.5
 /// equals the target's semi-major axis there (bisection in log(parameter), as an experiment's [match]).
 double startingWidth(const scene::Values& common, const Space& s, const FitOptions& o, const FitResult& r) {
@@ -241,7 +249,7 @@ double startingWidth(const scene::Values& common, const Space& s, const FitOptio
     for (size_t i = 0; i < r.angles.size() && !target; ++i)
         if (r.samples[i * nt + jt].usable) target = &r.samples[i * nt + jt];
     if (!target) return s.guess;
-    std::vector<double> x{s.guess, 0.0, 0.04};
+    std::vector<double> x = pointAt(s, s.guess);
     scene::Values v = modelValues(common, s, o, x);
     v.set("incidence", exactText(target->incidence));
     scene::Resolved res = scene::resolve(v);
@@ -254,6 +262,41 @@ double startingWidth(const scene::Values& common, const Space& s, const FitOptio
         ((w > target->major) == exponent ? lo : hi) = mid;
     }
     return 0.5 * (lo + hi);
+}
+
+/// Where the optimizer starts: the width matched at the first angle; with anisotropy, both ways the target's
+/// aspect there can split between the axes (the semi-axes do not say which axis is wider, and from an
+/// isotropic start the two are a saddle: GGX 0.1 x 0.2 stalled at 0.148 x 0.139); with F0, the F0 that gives
+/// the target's peak at the first angle (the peak scales with F0 where F = F0, at normal incidence).
+std::vector<std::vector<double>> startingPoints(measurement::Session& session, const scene::Values& common,
+                                               const Space& s, const FitOptions& o, const FitResult& r) {
+    const double w = startingWidth(common, s, o, r);
+    const FitSample* first = nullptr;
+    for (size_t k = 0; k < r.samples.size() && !first; ++k)
+        if (r.samples[k].usable) first = &r.samples[k];
+    std::vector<std::vector<double>> out;
+    if (s.aniso && first && first->aspect > 0 && first->aspect < 1) {
+        const double a = std::log(first->aspect);  // < 0
+        out.push_back({w + a, -a});  // y wider: alpha_x the minor axis's, alpha_y = alpha_x e^-a
+        out.push_back({w, a});       // x wider
+    } else {
+        out.push_back(s.aniso ? std::vector<double>{w, 0.0} : std::vector<double>{w});
+    }
+    if (s.f0) {
+        double f0 = 0.04;
+        if (first) {
+            std::vector<double> x = out.front();
+            x.push_back(f0);
+            const scene::Values v = modelValues(common, s, o, x);
+            FitResult one = r;
+            one.angles = {first->incidence};
+            one.thresholds = {first->threshold};
+            const auto m = measureSweep(session, sweepScenes(v, one), one);
+            if (!m.empty() && m[0].peak > 0 && first->peak > 0) f0 = std::clamp(f0 * first->peak / m[0].peak, 0.0, 1.0);
+        }
+        for (auto& x : out) x.push_back(f0);
+    }
+    return out;
 }
 
 std::string stopText(nlopt::result res) {
@@ -336,7 +379,7 @@ void checkFitScenes(const scene::Values& target, const FitOptions& o) {
     const scene::Values common = withoutMaterial(target);
     for (const std::string& m : o.models) {
         const Space s = spaceOf(m, o);
-        sweepScenes(modelValues(common, s, o, {s.guess, 0.0, 0.04}), r);
+        sweepScenes(modelValues(common, s, o, pointAt(s, s.guess)), r);
     }
 }
 
@@ -358,12 +401,11 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
         const auto t0 = Clock::now();
         ModelFit fit;
         fit.model = brdf::toString(s.model);
-        std::vector<double> x{startingWidth(common, s, o, r)}, lo{s.lo}, hi{s.hi}, step{0.05};
-        if (s.aniso) x.push_back(0.0), lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1);
-        if (s.f0) x.push_back(0.04), lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
-        x[0] = std::clamp(x[0], s.lo, s.hi);
+        std::vector<double> lo{s.lo}, hi{s.hi}, step{0.05};
+        if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1);
+        if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
         double best = std::numeric_limits<double>::infinity();
-        std::vector<double> bestX = x;
+        std::vector<double> bestX;
         std::vector<FitSample> bestSamples;
         auto objective = [&](const std::vector<double>& xv) {
             ++fit.evaluations;
@@ -372,26 +414,30 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
             if (res < best) best = res, bestX = xv, bestSamples = samples;
             return std::isfinite(res) ? res : 1e6;
         };
-        nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(x.size()));
-        opt.set_lower_bounds(lo);
-        opt.set_upper_bounds(hi);
-        opt.set_initial_step(step);
-        opt.set_xtol_abs(o.xtolAbs);
-        opt.set_ftol_rel(1e-6);  // a flat residual (phong against a microfacet lobe) stops before xtol
-        opt.set_maxeval(o.maxEvaluations);
-        opt.set_min_objective(
-            [](const std::vector<double>& xv, std::vector<double>&, void* data) {
-                return (*static_cast<decltype(objective)*>(data))(xv);
-            },
-            &objective);
-        double value = 0;
-        try {
-            fit.stop = stopText(opt.optimize(x, value));
-        } catch (const nlopt::roundoff_limited&) {
-            fit.stop = "roundoff limited";
-        } catch (const nlopt::forced_stop&) {
-            fit.stop = "forced stop";
-        }
+        auto optimize = [&](std::vector<double> x) {
+            for (size_t i = 0; i < x.size(); ++i) x[i] = std::clamp(x[i], lo[i], hi[i]);
+            nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(x.size()));
+            opt.set_lower_bounds(lo);
+            opt.set_upper_bounds(hi);
+            opt.set_initial_step(step);
+            opt.set_xtol_abs(o.xtolAbs);
+            opt.set_ftol_rel(1e-6);  // a flat residual (phong against a microfacet lobe) stops before xtol
+            opt.set_maxeval(o.maxEvaluations);
+            opt.set_min_objective(
+                [](const std::vector<double>& xv, std::vector<double>&, void* data) {
+                    return (*static_cast<decltype(objective)*>(data))(xv);
+                },
+                &objective);
+            double value = 0;
+            try {
+                fit.stop = stopText(opt.optimize(x, value));
+            } catch (const nlopt::roundoff_limited&) {
+                fit.stop = "roundoff limited";
+            } catch (const nlopt::forced_stop&) {
+                fit.stop = "forced stop";
+            }
+        };
+        for (const std::vector<double>& x : startingPoints(session, common, s, o, r)) optimize(x);
         fit.residual = best;
         fit.samples = bestSamples;
         fit.params[s.width] = std::exp(bestX[0]);
