@@ -30,7 +30,7 @@ int lineCount(const std::string& s) { return hilite_test::lines(s); }
 
 }  // namespace
 
-TEST_CASE("cli::brdf fresnel --json: theta_deg and rgb per line; copper is spectral") {
+TEST_CASE("cli::brdf fresnel --json: theta_deg and rgb per line, copper is spectral") {
     const auto r = hilite("brdf fresnel --material copper --incidence 0:90:30 --json");
     REQUIRE(r.code == 0);
     const auto lines = jsonLines(r.out);

@@ -59,7 +59,7 @@ TEST_CASE("brdf::F_Dielectric") {
     }
 }
 
-TEST_CASE("brdf::F_Conductor equals pbrt-v4's complex FrComplex; with k = 0 it is F_Dielectric") {
+TEST_CASE("brdf::F_Conductor equals pbrt-v4's complex FrComplex, with k = 0 it is F_Dielectric") {
     std::mt19937_64 rng(4);
     std::uniform_real_distribution<double> u01(0.0, 1.0);
     double worst = 0.0;

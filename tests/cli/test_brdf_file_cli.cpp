@@ -105,7 +105,7 @@ TEST_CASE("cli .brdf malformed files: one line with file and line, exit 2, nothi
     }
 }
 
-TEST_CASE("cli --param errors name file, line and parameter; scene files add their own line") {
+TEST_CASE("cli --param errors name file, line and parameter, scene files add their own line") {
     Dir d;
     struct Case {
         std::string args, expected;
@@ -209,7 +209,7 @@ TEST_CASE("cli .brdf notes, render output and GLSL 1.x style") {
     CHECK(fs::file_size(d / "out.pfm") > 32 * 32 * 12);
 }
 
-TEST_CASE("cli::run sweeps a .brdf parameter; rows record it; shards merge; [match] is refused") {
+TEST_CASE("cli::run sweeps a .brdf parameter, rows record it, shards merge, [match] is refused") {
     Dir d;
     fs::create_directories(d.path / "exp" / "brdfs");
     fs::copy_file(kShipped + "blinn.brdf", d.path / "exp" / "brdfs" / "b.brdf");

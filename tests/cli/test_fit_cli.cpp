@@ -114,7 +114,7 @@ TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, n
     }
 }
 
-TEST_CASE("cli::fit: the fit_models experiment over a folder of tables writes the ranking; bad [fit] refused") {
+TEST_CASE("cli::fit: the fit_models experiment over a folder of tables writes the ranking, and a bad fit table is refused") {
     hilite_test::TempDir dir("hilite-fit-exp");
     std::filesystem::create_directories(std::filesystem::path(dir / "tables"));
     REQUIRE(hilite_test::hilite("brdf tabulate --model blinn --exponent 300 -o " + (dir / "tables/a_blinn.binary")).code == 0);

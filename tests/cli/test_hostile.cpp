@@ -337,7 +337,7 @@ TEST_CASE("cli::hostile stdout that cannot be written is a failure, not exit 0")
     CHECK(hilite("measure --size 32 --incidence 30 >/dev/null").code == 0);
 }
 
-TEST_CASE("cli::hostile automatic is the word auto; a number is taken literally") {
+TEST_CASE("cli::hostile automatic is the word auto, a number is taken literally") {
     TempDir d("hilite-auto");
     d.write("fov.toml", "[scene.camera]\nsize = \"32\"\n[[sweep]]\nkey = \"camera.fov\"\nvalues = [\"auto\", 20]\n");
     const Result run = hilite("run " + (d / "fov.toml") + " -o " + (d / "out"));

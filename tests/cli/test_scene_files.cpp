@@ -56,7 +56,7 @@ TEST_CASE("cli::explain prints only the named terms' GLSL") {
     CHECK(schlick.out.find("VEC3 F_Schlick(") != std::string::npos);
 }
 
-TEST_CASE("cli scene files: bad input names the file, line and key; exit 2; nothing written") {
+TEST_CASE("cli scene files: bad input names the file, line and key, exit 2, nothing written") {
     Tmp t;
     const std::string out = t / "out.png";
     struct Case {
