@@ -3,7 +3,7 @@
 // --benchmark_repetitions=5 --benchmark_report_aggregates_only=true and read the medians.
 //   --benchmark_filter=MeasureAutoFramed   one auto-framed measurement at 512x512 (target <= 2 ms)
 //   --benchmark_filter='Draw|Readback|Analysis'   the pipeline's stages, 128^2 .. 2048^2
-//   --benchmark_filter=EffectSet            shading cost of each effect set at 512^2
+//   --benchmark_filter=EffectSet            shading cost of each effect set at 512^2 (spectral: table and exact)
 //   --benchmark_filter=Sweep                configurations per second (the 90 x 4 sweep's measurements)
 //   --benchmark_filter=View                 GL float path against the CPU double path, same pixels, all cores
 //   --benchmark_filter=Session              the library route of the Python module: Values -> resolve -> Session
@@ -171,10 +171,13 @@ render::Scene effectSet(int k) {
         p.spectrum = brdf::loadSpectrum(render::dataDirectory(), "copper", 5);
         p.fresnel = brdf::Fresnel::Spectral;
     }
-    if (k >= 4) p.roughnessY = 0.2;  // + anisotropy
+    if (k == 4) p.roughnessY = 0.2;  // + anisotropy
+    if (k == 5) p.spectralTable = false;  // + spectral, the exact per-pixel sum (--spectral-fresnel exact)
+    if (k == 6) p.geometry = brdf::Geometry::Implicit, p.diffuse = brdf::Diffuse::None;  // NDF + spectral table
     return s;
 }
-const char* kEffectNames[] = {"NDF only", "D+F+G", "+ diffuse", "+ spectral", "+ anisotropy"};
+const char* kEffectNames[] = {"NDF only", "D+F+G", "+ diffuse", "+ spectral (table)", "+ anisotropy",
+                              "+ spectral (exact)", "NDF + spectral (table)"};
 
 void BM_EffectSet(benchmark::State& state) {
     const render::Scene s = effectSet(int(state.range(0)));
@@ -186,7 +189,7 @@ void BM_EffectSet(benchmark::State& state) {
     pixelRate(state, double(size) * size);
     state.SetLabel(kEffectNames[state.range(0)]);
 }
-BENCHMARK(BM_EffectSet)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EffectSet)->DenseRange(0, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // ---- Sweep throughput: configurations per second ----
 

@@ -5,7 +5,7 @@
 
 // ---- Config ----
 // (injected after #version by the assembler: HILITE_OUTPUT_MEASURE or HILITE_OUTPUT_COLOR, and for the
-// spectral Fresnel HILITE_SPECTRAL_SAMPLES, the length of its uniform arrays)
+// spectral Fresnel HILITE_SPECTRAL_SAMPLES, the length of its uniform arrays, and HILITE_SPECTRAL_TABLE_SIZE)
 
 //@block prelude
 #define REAL float
@@ -165,5 +165,17 @@ vec3 measuredBrdf(vec3 wi, vec3 wo) {
         weight += w;
     }
     return weight > 0.0 ? sum / weight : vec3(0.0);
+}
+//@end
+
+//@block F_SpectralTable
+// Spectral Fresnel from a table: F_Spectral at cos = i / (N - 1), computed in double on the CPU
+// (src/brdf/spectral.hpp, kFresnelTableSize), linear between entries: within 1e-5 of F_Spectral, at the
+// price of one lookup. Interpolated here, not by a texture's filter, whose weights may have 8 bits.
+uniform vec3 uSpectralTable[HILITE_SPECTRAL_TABLE_SIZE];
+vec3 F_SpectralTable(float cosTheta_i) {
+    float x = clamp(cosTheta_i, 0.0, 1.0) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
+    int i = min(int(x), HILITE_SPECTRAL_TABLE_SIZE - 2);
+    return mix(uSpectralTable[i], uSpectralTable[i + 1], x - float(i));
 }
 //@end

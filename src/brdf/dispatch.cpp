@@ -148,6 +148,13 @@ const std::vector<Keyed<Fresnel, FresnelRow>> kFresnels = {
           return F_Spectral(VoH, *p.spectrum);
       }}},
 };
+/// Fresnel::Spectral read from the spectrum's table (Params::spectralTable).
+const FresnelRow kSpectralTable = {"F_SpectralTable", {}, "F_SpectralTable(VoH)", {},  // its uniform is in the block
+                                   [](const Params& p, double VoH) {
+                                       if (!p.spectrum)
+                                           throw std::logic_error("fresnel spectral without a sampled spectrum");
+                                       return F_SpectralTable(VoH, *p.spectrum);
+                                   }};
 
 // ---- Geometry: D G / (4 cos_i cos_o) from s = D (the Lambdas of the model's row, for the Smith rows) ----
 const std::vector<Keyed<Geometry, GeometryRow>> kGeometries = {
@@ -203,6 +210,9 @@ const LambdaRow& lambdaRow(const Params& p) {
     return find(kLambdas, DistributionKey{p.model, anisotropicTerms(p)}, "Smith Lambda");
 }
 const FresnelRow& fresnelRow(Fresnel f) { return find(kFresnels, f, "Fresnel"); }
+const FresnelRow& fresnelRow(const Params& p) {
+    return p.fresnel == Fresnel::Spectral && p.spectralTable ? kSpectralTable : fresnelRow(p.fresnel);
+}
 const GeometryRow& geometryRow(Geometry g) { return find(kGeometries, g, "geometry"); }
 const DiffuseRow& diffuseRow(Diffuse d) { return find(kDiffuses, d, "diffuse"); }
 

@@ -50,6 +50,8 @@ const LobeRow& lobeRow(Model m);
 const DistributionRow& distributionRow(const Params& p);
 const LambdaRow& lambdaRow(const Params& p);
 const FresnelRow& fresnelRow(Fresnel f);
+/// The row the BRDF calls: fresnelRow(p.fresnel), or the spectral table's row (Params::spectralTable).
+const FresnelRow& fresnelRow(const Params& p);
 const GeometryRow& geometryRow(Geometry g);
 const DiffuseRow& diffuseRow(Diffuse d);
 

@@ -37,7 +37,7 @@ double distribution(const Params& p, const dvec3& h) {
     return isMicrofacet(p.model) ? distribution(p, halfVectorOf(h)) : 0.0;
 }
 
-dvec3 fresnel(const Params& p, double cosTheta) { return fresnelRow(p.fresnel).cpp(p, cosTheta); }
+dvec3 fresnel(const Params& p, double cosTheta) { return fresnelRow(p).cpp(p, cosTheta); }
 
 dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo) {
     if (wi.z <= 0.0 || wo.z <= 0.0) return dvec3(0.0);  // light or viewer below the horizon

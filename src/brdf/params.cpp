@@ -127,7 +127,8 @@ std::ostream& operator<<(std::ostream& os, const Params& p) {
         if (p.fresnel == Fresnel::Dielectric || p.fresnel == Fresnel::Conductor) printRgb(os, "eta", p.eta);
         if (p.fresnel == Fresnel::Conductor) printRgb(os, "k", p.k);
         if (p.fresnel == Fresnel::Spectral && p.spectrum)
-            os << " material=" << p.spectrum->name << " wavelengths=" << p.spectrum->size();
+            os << " material=" << p.spectrum->name << " wavelengths=" << p.spectrum->size()
+               << (p.spectralTable ? " table" : " exact");
         os << " geometry=" << toString(p.geometry);
     }
     if (p.diffuse != Diffuse::None) {

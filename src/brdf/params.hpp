@@ -80,6 +80,9 @@ struct Params {
     dvec3 eta{1.5, 1.5, 1.5};                  ///< dielectric / conductor: real part of the relative index n_t / n_i
     dvec3 k{0.0, 0.0, 0.0};                    ///< conductor: extinction coefficient
     std::shared_ptr<const Spectrum> spectrum;  ///< spectral: the sampled metal (see brdf/spectral.hpp)
+    /// spectral: F from the spectrum's table over cos theta_d (F_SpectralTable, within 1e-5) instead of the
+    /// per-wavelength sum at every evaluation (F_Spectral, exact); --spectral-fresnel table | exact
+    bool spectralTable = true;
     std::shared_ptr<const NdfTable> ndfTable;  ///< tabulated: the normalized table (see brdf/ndf_table.hpp)
     /// measured: a MERL table (brdf/merl.hpp) that is the whole BRDF (lobe with its F and G, and any diffuse):
     /// when set, model, fresnel, geometry and diffuse are unused (resolve sets them to none) and evaluate()

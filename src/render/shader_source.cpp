@@ -138,7 +138,7 @@ struct Rows {
         if (brdf::isMicrofacet(p.model)) {
             distribution = &brdf::distributionRow(p);
             if (brdf::usesSmith(p)) lambda = &brdf::lambdaRow(p);
-            if (p.fresnel != Fresnel::None) fresnel = &brdf::fresnelRow(p.fresnel);
+            if (p.fresnel != Fresnel::None) fresnel = &brdf::fresnelRow(p);
             geometry = &brdf::geometryRow(p.geometry);
         }
         if (p.diffuse != Diffuse::None) diffuse = &brdf::diffuseRow(p.diffuse);
@@ -249,6 +249,9 @@ std::vector<TermUniform> termUniforms(const brdf::Params& p) {
         }
         u.push_back(etaK);
         u.push_back(weight);
+        TermUniform table{"uSpectralTable", 3, {}};
+        for (const dvec3& f : p.spectrum->fresnelTable()) table.values.insert(table.values.end(), {float(f.x), float(f.y), float(f.z)});
+        u.push_back(table);
     }
     if (p.ndfTable) {  // the tabulated NDF's rows and its Smith projected areas
         TermUniform rows{"uNdfTable", 2, {}}, area{"uNdfProjectedArea", 1, {}};
@@ -326,7 +329,9 @@ ProgramSources assemble(const brdf::Params& p, Output out, const std::string& di
     src.vertex.push_back({"shaders/plane.vert", 1, readFile(dir + "/plane.vert")});
     std::string config = "#version 450 core\n";
     config += out == Output::Measure ? "#define HILITE_OUTPUT_MEASURE 1\n" : "#define HILITE_OUTPUT_COLOR 1\n";
-    if (const size_t n = spectralSamples(p)) config += "#define HILITE_SPECTRAL_SAMPLES " + std::to_string(n) + "\n";
+    if (const size_t n = spectralSamples(p))
+        config += "#define HILITE_SPECTRAL_SAMPLES " + std::to_string(n) + "\n#define HILITE_SPECTRAL_TABLE_SIZE " +
+                  std::to_string(brdf::kFresnelTableSize) + "\n";
     if (const size_t n = ndfTableRows(p)) config += "#define HILITE_NDF_TABLE_ROWS " + std::to_string(n) + "\n";
     src.fragment.push_back({"<generated config>", 1, config});
     for (const ShaderBlock* b : ordered) src.fragment.push_back({b->file, b->firstLine, b->text});

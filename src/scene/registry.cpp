@@ -38,6 +38,7 @@ bool exactIndex(const Resolved& r) {
     return microfacet(r) &&
            (r.scene.brdf.fresnel == brdf::Fresnel::Dielectric || r.scene.brdf.fresnel == brdf::Fresnel::Conductor);
 }
+bool spectral(const Resolved& r) { return microfacet(r) && r.scene.brdf.fresnel == brdf::Fresnel::Spectral; }
 bool conductor(const Resolved& r) { return microfacet(r) && r.scene.brdf.fresnel == brdf::Fresnel::Conductor; }
 bool hasMaterial(const Resolved& r) { return builtin(r) && r.values.given("material"); }
 bool diffuse(const Resolved& r) { return builtin(r) && r.scene.brdf.diffuse != brdf::Diffuse::None; }
@@ -93,6 +94,11 @@ std::vector<Param> build() {
     add({"material", T::Material, K::Choice, "", 0, 0, false, false, brdf::materialNames(), "",
          "Fresnel preset: " + materials + " (copper, gold: spectral)", "microfacet models", hasMaterial, "material",
          [](const Resolved& r) -> json { return r.values.text("material"); }});
+    add({"spectral_fresnel", T::Material, K::Choice, "table", 0, 0, false, false, {"table", "exact"}, "",
+         "table (F over cos theta_d, 1024 entries computed in double per metal, linear between them: within 1e-5 of "
+         "exact, at the cost of one lookup) | exact (the sum over the wavelengths at every pixel: 81 on the GPU)",
+         "fresnel spectral", spectral, "spectral_fresnel",
+         [](const Resolved& r) -> json { return r.scene.brdf.spectralTable ? "table" : "exact"; }});
     add({"eta", T::Material, K::Rgb, "", brdf::kMinEta, brdf::kMaxEta, false, false, {}, "",
          "dielectric/conductor index eta = n_t/n_i (default: the material's, else 1.5)",
          "fresnel dielectric, conductor", exactIndex, "eta",

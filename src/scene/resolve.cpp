@@ -168,6 +168,7 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
         throw InputError(w + " dielectric: " + mat->name + " is a metal (use conductor, schlick or spectral)");
     if (p.fresnel == Fresnel::Spectral && !p.spectrum)
         throw InputError(w + " spectral: needs --material copper or gold (the measured spectra)");
+    p.spectralTable = in.text("spectral_fresnel") == "table";
     if ((eta || k) && p.fresnel == Fresnel::Spectral)
         throw InputError(in.where(eta ? "eta" : "k") + ": not used by --fresnel spectral (the material's spectrum is)");
     if (k && p.fresnel == Fresnel::Dielectric) throw InputError(in.where("k") + ": only for --fresnel conductor");

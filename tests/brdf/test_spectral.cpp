@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 using namespace hilite;
 
 namespace {
@@ -108,4 +110,31 @@ TEST_CASE("brdf::F_Spectral F0 agrees with the published linear F0 of copper and
     CHECK(std::min(au.x, 1.0) == 1.0);
     CHECK(std::abs(au.y - 0.782) < 2e-3);
     CHECK(std::abs(au.z - 0.344) < 2e-3);
+}
+
+TEST_CASE("brdf::F_SpectralTable within 1e-5 of F_Spectral over cos theta_d in [0, 1]") {
+    for (const std::string& metal : brdf::spectralMetals())
+        for (int step : {brdf::kGpuStepNm, brdf::kFullStepNm}) {
+            const auto s = brdf::loadSpectrum(HILITE_DATA_DIR, metal, step);
+            CHECK(s->fresnelTable().size() == size_t(brdf::kFresnelTableSize));
+            // 16 points per table interval (its ends, where the table is exact, included): the error of linear
+            // interpolation peaks mid-interval.
+            const int n = 16 * (brdf::kFresnelTableSize - 1);
+            double worst = 0.0, worstAt = 0.0;
+            for (int i = 0; i <= n; ++i) {
+                const double c = double(i) / n;
+                const dvec3 d = glm::abs(brdf::F_SpectralTable(c, *s) - brdf::F_Spectral(c, *s));
+                const double e = std::max({d.x, d.y, d.z});
+                if (e > worst) worst = e, worstAt = c;
+            }
+            CAPTURE(metal);
+            CAPTURE(step);
+            MESSAGE(metal << " (" << s->size() << " wavelengths): table worst error " << worst << " at cos " << worstAt);
+            CHECK(worst <= 1e-5);
+            CHECK(worst > 0.0);  // the table is an approximation: a 0 would mean the exact sum was compared with itself
+            CHECK(brdf::F_SpectralTable(1.0, *s) == brdf::F_Spectral(1.0, *s));  // the ends are entries
+            CHECK(brdf::F_SpectralTable(0.0, *s) == brdf::F_Spectral(0.0, *s));
+            CHECK(brdf::F_SpectralTable(-0.5, *s) == brdf::F_SpectralTable(0.0, *s));  // clamped as F_Conductor is
+            CHECK(brdf::F_SpectralTable(1.5, *s) == brdf::F_SpectralTable(1.0, *s));
+        }
 }
