@@ -6,6 +6,7 @@
 #include "cli/scene_flags.hpp"
 #include "core/error.hpp"
 #include "core/text.hpp"
+#include "gl/context.hpp"
 #include "gl/program.hpp"
 #include "render/renderer.hpp"
 #include "render/shader_source.hpp"
@@ -72,6 +73,22 @@ void printScene(const scene::Resolved& r, std::ostream& os) {
     }
 }
 
+/// The context the scene would render on: backend, device, GL_VENDOR, GL_RENDERER, GL_VERSION (a context
+/// is made, nothing is drawn); a machine without one says why.
+void printGl(const scene::Resolved& r, const std::string& prefix) {
+    try {
+        const gl::Context context(scene::backendOf(r), r.gpu);
+        const gl::ContextInfo& i = context.info();
+        std::cout << prefix << "backend: " << gl::toString(i.backend)
+                  << (i.device >= 0 ? " (device " + std::to_string(i.device) + ")" : "") << "\n"
+                  << prefix << "vendor: " << i.vendor << "\n"
+                  << prefix << "renderer: " << i.renderer << "\n"
+                  << prefix << "version: " << i.version << "\n";
+    } catch (const SystemError& e) {
+        std::cout << prefix << "unavailable: " << e.what() << "\n";
+    }
+}
+
 int runExplain(const ExplainFlags& f) {
     if (f.part == "flags") {
         std::cout << scene::markdownTable();
@@ -84,6 +101,7 @@ int runExplain(const ExplainFlags& f) {
     if (all) std::cout << "# Active effects: the program and the CPU twin evaluate exactly these terms\n";
     if (all || f.part == "effects")
         for (const auto& e : render::activeEffects(r.scene)) std::cout << (all ? "#   " : "") << e << "\n";
+    if (all || f.part == "gl") printGl(r, all ? "# GL " : "");
     if (all) std::cout << "\n# ---- Generated GLSL: fragment shader of the measurement view ----\n";
     if (all || f.part == "glsl") {
         const auto src = render::programSources(r.scene, render::Output::Measure, render::shaderDirectory());
@@ -97,9 +115,11 @@ int runExplain(const ExplainFlags& f) {
 Action addExplain(CLI::App& app) {
     auto f = std::make_shared<ExplainFlags>();
     addParamFlags(app, f->scene);
-    app.add_option("--part", f->part, "all | scene | effects | glsl | flags (the parameter registry as a markdown table)")
+    app.add_option("--part", f->part,
+                   "all | scene | effects | glsl | gl (the GL context it would render on: backend, vendor, renderer) | "
+                   "flags (the parameter registry as a markdown table)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"all", "scene", "effects", "glsl", "flags"}));
+        ->check(CLI::IsMember({"all", "scene", "effects", "glsl", "gl", "flags"}));
     app.footer("Example: hilite explain --model ggx --fresnel schlick --f0 0.04 --geometry smith --part effects");
     return [f] { return runExplain(*f); };
 }

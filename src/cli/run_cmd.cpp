@@ -68,7 +68,7 @@ Action addRun(CLI::App& app) {
     app.add_option("-o,--output", f->out, "output folder (default results/<experiment name>)")->check(nonEmpty());
     app.add_flag("--resume", f->resume, "keep the completed rows already in the output folder and run the rest");
     app.add_option("--shard", f->shard, "run only configurations i with i mod N = K-1 (K/N, 1-based)");
-    app.add_option("--gl-backend", f->backend, "auto | osmesa | egl");
+    app.add_option("--gl-backend", f->backend, "auto | osmesa | egl | egl-device");
     app.footer("Example: hilite run eccentricity   (writes results/eccentricity/)");
     return [f] { return runExperiment(*f); };
 }
@@ -77,7 +77,7 @@ Action addMerge(CLI::App& app) {
     auto f = std::make_shared<MergeFlags>();
     app.add_option("shards", f->shards, "output folders of hilite run --shard K/N")->required();
     app.add_option("-o,--output", f->out, "folder for the merged results")->required()->check(nonEmpty());
-    app.add_option("--gl-backend", f->backend, "auto | osmesa | egl");
+    app.add_option("--gl-backend", f->backend, "auto | osmesa | egl | egl-device");
     app.footer("Example: hilite merge results/s1 results/s2 -o results/eccentricity");
     return [f] { return runMerge(*f); };
 }

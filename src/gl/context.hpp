@@ -1,6 +1,7 @@
 #pragma once
 // An offscreen OpenGL context (RAII) behind a small interface, one backend per source file:
-// OSMesa (backend_osmesa.cpp) and EGL surfaceless (backend_egl.cpp), both Mesa's llvmpipe here.
+// OSMesa (backend_osmesa.cpp), EGL surfaceless and EGL device (backend_egl.cpp): Mesa's llvmpipe here,
+// the GPU's driver through EGL device where there is one.
 // Both libraries are opened at run time (dlopen), so a machine without one still runs with the other;
 // GL entry points are loaded through the backend's GetProcAddress (glad), never linked from libGL.
 // One context is current per process at a time: creating a context loads the GL pointers for it.
@@ -13,15 +14,18 @@
 
 namespace hilite::gl {
 
-enum class Backend { Auto, OSMesa, EGL };
+enum class Backend { Auto, OSMesa, EGL, EGLDevice };
 const char* toString(Backend);
 std::ostream& operator<<(std::ostream&, Backend);
-std::optional<Backend> parseBackend(const std::string&);  ///< "auto", "osmesa", "egl"
+std::optional<Backend> parseBackend(const std::string&);  ///< "auto", "osmesa", "egl", "egl-device"
+/// Every backend name, in the order help lists them.
+std::vector<std::string> backendNames();
 /// The backend asked for by the environment variable HILITE_GL_BACKEND, or Auto.
 Backend backendFromEnvironment();
 
 struct ContextInfo {
     Backend backend = Backend::Auto;
+    int device = -1;  ///< egl-device: the index among eglDevices(); -1 for the other backends
     std::string vendor, renderer, version, glslVersion;
     int major = 0, minor = 0;
 };
@@ -38,12 +42,27 @@ public:
 /// Each returns nullptr and sets `why` when the backend cannot give a GL >= 3.3 core context.
 std::unique_ptr<BackendImpl> createOSMesaBackend(std::string& why);
 std::unique_ptr<BackendImpl> createEGLBackend(std::string& why);
+std::unique_ptr<BackendImpl> createEGLDeviceBackend(int index, std::string& why);
+
+/// A device EGL enumerates (EGL_EXT_device_enumeration), as EGL_EXT_device_query describes it.
+struct EglDevice {
+    std::string extensions;  ///< the device's own extension string
+    std::string drmFile;     ///< EGL_DRM_DEVICE_FILE_EXT ("/dev/dri/card0"), "" without EGL_EXT_device_drm
+    bool software = false;   ///< EGL_MESA_device_software: Mesa's llvmpipe, not a GPU
+};
+/// The devices of this machine, in EGL's order (the --gpu index); empty with `why` set when libEGL or
+/// the device extensions are missing. Enumerated once per process.
+std::vector<EglDevice> eglDevices(std::string& why);
+/// The index of the first device that is not Mesa's software device, or -1.
+int firstHardwareDevice();
 
 class Context {
 public:
-    /// Creates and makes current a context; Auto prefers OSMesa and falls back to EGL.
-    /// Throws SystemError saying why every backend tried failed.
-    explicit Context(Backend backend = Backend::Auto);
+    /// Creates and makes current a context. Auto prefers a hardware EGL device (one that is not Mesa's
+    /// software device and whose GL renderer is not llvmpipe or softpipe), then OSMesa, then EGL
+    /// surfaceless. `device`: egl-device's index (-1: the first hardware device, else 0); InputError
+    /// naming --gpu when no such device exists. Throws SystemError saying why every backend tried failed.
+    explicit Context(Backend backend = Backend::Auto, int device = -1);
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;

@@ -23,7 +23,7 @@ render::Renderer& Session::rendererFor(const scene::Resolved& r) {
         }
     }
     if (!m_renderer) {
-        m_context = std::make_unique<gl::Context>(scene::backendOf(backend));
+        m_context = std::make_unique<gl::Context>(scene::backendOf(backend), r.gpu);
         m_renderer = std::make_unique<render::Renderer>(*m_context);
     }
     m_renderer->setShaderTimeLimit(r.shaderTimeoutS);
@@ -32,7 +32,14 @@ render::Renderer& Session::rendererFor(const scene::Resolved& r) {
 
 nlohmann::json Session::measureOne(const scene::Resolved& r) {
     render::Renderer* gl = r.reference || r.setup.cpu ? nullptr : &rendererFor(r);
-    return measureRow(gl, r);
+    nlohmann::json j = measureRow(gl, r);
+    if (gl) {  // what rendered it: a GPU or llvmpipe (the strings GL_RENDERER and GL_VENDOR give)
+        const gl::ContextInfo& info = m_context->info();
+        j["gl_backend"] = gl::toString(info.backend);
+        j["gl_renderer"] = info.renderer;
+        j["gl_vendor"] = info.vendor;
+    }
+    return j;
 }
 
 std::vector<nlohmann::json> Session::measure(const scene::Resolved& r) {

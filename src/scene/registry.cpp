@@ -5,6 +5,7 @@
 #include "brdf/ndf_table.hpp"
 #include "brdf/params.hpp"
 #include "core/text.hpp"
+#include "gl/context.hpp"
 #include "render/surface.hpp"
 #include "scene/resolve.hpp"
 
@@ -184,8 +185,15 @@ std::vector<Param> build() {
     add({"distance", T::Camera, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
          "eye distance from the origin (photo view; measurement view under a point light)", "light point; photo view",
          point, "distance", [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
-    add({"gl_backend", T::Camera, K::Choice, "", 0, 0, false, false, {"auto", "osmesa", "egl"}, "",
-         "auto | osmesa | egl (default: $HILITE_GL_BACKEND, else auto)", "GL renders", nullptr, "", nullptr});
+    add({"gl_backend", T::Camera, K::Choice, "", 0, 0, false, false, gl::backendNames(), "",
+         "auto (a GPU through EGL device if there is one, else osmesa, else egl) | osmesa | egl (surfaceless) | "
+         "egl-device (EGL_EXT_platform_device: --gpu N, default the first GPU, else Mesa's software device) "
+         "(default: $HILITE_GL_BACKEND, else auto)",
+         "GL renders", nullptr, "", nullptr});
+    add({"gpu", T::Camera, K::Integer, "", 0, 1023, false, false, {}, "",  // the devices' range: resolve.cpp gpuIndex
+         "egl-device (or auto): the index of the EGL device to render on, below the number of devices EGL lists "
+         "(default: the first that is not Mesa's software device, else 0)",
+         "--gl-backend egl-device, auto", nullptr, "", nullptr});
     add({"shader_timeout", T::Camera, K::Number, "10", 1e-3, 3600, false, false, {}, "s",
          "seconds a .brdf shader may take on a probe render in a child process, and on each compile and draw, "
          "before it is stopped (exit 2)",

@@ -271,6 +271,23 @@ void checkScene(const Reader& in, const render::Scene& s) {
                          "bumps are a remapped normal map; use supersample or auto)");
 }
 
+/// --gpu N: only for the backends that render on an EGL device, and below the number of devices (checked
+/// here, before anything is written, not when the context is made).
+int gpuIndex(const Reader& in, gl::Backend backend) {
+    if (backend != gl::Backend::EGLDevice && backend != gl::Backend::Auto)
+        throw InputError(in.where("gpu") + ": only with --gl-backend egl-device or auto (got " + gl::toString(backend) +
+                         ")");
+    // The range in the message is this machine's devices, not the registry's bound, so it is checked here.
+    const std::string t = in.values().text("gpu");
+    const auto v = parseNumber(t);
+    std::string why;
+    const size_t count = gl::eglDevices(why).size();
+    if (!v || *v < 0 || *v != std::floor(*v) || !(*v < double(count)))
+        throw InputError(in.where("gpu") + ": must be a whole number in [0, " + std::to_string(count) + ") (got '" + t +
+                         "'; " + (count ? std::to_string(count) + " EGL devices here" : why) + ")");
+    return int(*v);
+}
+
 /// The measurement's own rules: which accuracy knobs combine with the reference, a .brdf and bumps.
 void checkMeasurement(const Reader& in, const Resolved& r) {
     const render::Scene& scene = r.scene;
@@ -348,6 +365,7 @@ Resolved resolve(const Values& values, Purpose purpose) {
     if (r.view == View::Photo && r.elevationDeg == 0.0)  // a valid view, but a black image needs saying why
         warnOnce(in.where("elevation") + " 0: the camera lies in the plane and sees it edge-on: no surface in view");
     r.backend = in.text("gl_backend");
+    if (in.given("gpu")) r.gpu = gpuIndex(in, backendOf(r.backend));
     r.setup.options.threshold = in.number("threshold");
     r.setup.options.minPixelsAcross = int(in.number("min_pixels"));
     r.setup.options.subpixel = in.text("boundary") == "subpixel";
@@ -364,7 +382,7 @@ Resolved resolve(const Values& values, Purpose purpose) {
 gl::Backend backendOf(const std::string& name) {
     if (name.empty()) return gl::backendFromEnvironment();
     if (auto b = gl::parseBackend(name)) return *b;
-    throw InputError("--gl-backend: unknown '" + name + "' (allowed: auto, osmesa, egl)");
+    throw InputError("--gl-backend: unknown '" + name + "' (allowed: " + join(gl::backendNames()) + ")");
 }
 
 brdf::Params resolveFresnel(Values v, bool spectral) {

@@ -58,6 +58,7 @@ struct Resolved {
     double fovDeg = 0;           ///< 0: --fov auto, the view's default (render) or automatic framing (measure)
     std::optional<double> elevationDeg;  ///< photo view; none: --elevation auto, 90 - incidence
     std::string backend;         ///< as given ("" = $HILITE_GL_BACKEND or auto), checked
+    int gpu = -1;                ///< --gpu: the EGL device (egl-device, auto), checked against the devices; -1 unset
     double shaderTimeoutS = 10;
     int spectralStepNm = 5;
     Values values;               ///< what was resolved, as given

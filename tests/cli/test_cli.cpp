@@ -84,7 +84,8 @@ TEST_CASE("cli::measure JSON lines carry the contract's fields") {
 
 TEST_CASE("cli::measure bad input") {
     for (const char* args : {"--threshold 1.5", "--threshold 0", "--incidence 0:95:5", "--incidence 10:0:5",
-                             "--incidence 0:10:-1", "--incidence a,b", "--boundary fuzzy", "--gl-backend glx"}) {
+                             "--incidence 0:10:-1", "--incidence a,b", "--boundary fuzzy", "--gl-backend glx",
+                             "--gpu -1", "--gl-backend egl-device --gpu 1000", "--gl-backend osmesa --gpu 0"}) {
         CAPTURE(args);
         const auto r = hilite(std::string("measure ") + args);
         CHECK(r.code == 2);

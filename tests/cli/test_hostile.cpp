@@ -121,6 +121,7 @@ std::vector<Case> flagCases() {
         {"--fresnel", {"bogus", "''"}},
         {"--geometry", {"bogus"}},
         {"--gl-backend", {"bogus"}},
+        {"--gpu", {"-1", "1.5", "''", "1023", "x"}},  // 1023: within the registry, beyond any machine's EGL devices
         {"--tint", {"1,2", "1,2,3,4", "nan", "-1"}},
     };
     for (const auto& [flag, values] : numbers)
