@@ -169,12 +169,13 @@ vec3 measuredBrdf(vec3 wi, vec3 wo) {
 //@end
 
 //@block F_SpectralTable
-// Spectral Fresnel from a table: F_Spectral at cos = i / (N - 1), computed in double on the CPU
-// (src/brdf/spectral.hpp, kFresnelTableSize), linear between entries: within 1e-5 of F_Spectral, at the
-// price of one lookup. Interpolated here, not by a texture's filter, whose weights may have 8 bits.
+// Spectral Fresnel from a table: F_Spectral at cos = (i / (N - 1))^2, computed in double on the CPU
+// (src/brdf/spectral.hpp, kFresnelTableSize: spaced evenly in sqrt(cos), denser toward grazing where F
+// bends most), linear between entries: within 1e-5 of F_Spectral for one lookup. Interpolated here, not by a
+// texture's filter, whose weights may have as few as 8 bits.
 uniform vec3 uSpectralTable[HILITE_SPECTRAL_TABLE_SIZE];
 vec3 F_SpectralTable(float cosTheta_i) {
-    float x = clamp(cosTheta_i, 0.0, 1.0) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
+    float x = sqrt(clamp(cosTheta_i, 0.0, 1.0)) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
     int i = min(int(x), HILITE_SPECTRAL_TABLE_SIZE - 2);
     return mix(uSpectralTable[i], uSpectralTable[i + 1], x - float(i));
 }

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -141,7 +142,10 @@ dvec3 F_Spectral(double cosTheta_i, const Spectrum& s) {
 const std::vector<dvec3>& Spectrum::fresnelTable() const {
     std::call_once(m_tableOnce, [this] {
         m_table.resize(size_t(kFresnelTableSize));
-        for (int i = 0; i < kFresnelTableSize; ++i) m_table[size_t(i)] = F_Spectral(double(i) / (kFresnelTableSize - 1), *this);
+        for (int i = 0; i < kFresnelTableSize; ++i) {
+            const double t = double(i) / (kFresnelTableSize - 1);  // sqrt(cos theta)
+            m_table[size_t(i)] = F_Spectral(t * t, *this);
+        }
     });
     return m_table;
 }
@@ -149,7 +153,7 @@ const std::vector<dvec3>& Spectrum::fresnelTable() const {
 dvec3 F_SpectralTable(double cosTheta_i, const Spectrum& s) {
     // The same steps as the GLSL (shaders/brdf_gl.glsl, F_SpectralTable), in double.
     const std::vector<dvec3>& t = s.fresnelTable();
-    const double x = std::clamp(cosTheta_i, 0.0, 1.0) * (kFresnelTableSize - 1);
+    const double x = std::sqrt(std::clamp(cosTheta_i, 0.0, 1.0)) * (kFresnelTableSize - 1);
     const int i = std::min(int(x), kFresnelTableSize - 2);
     const double f = x - double(i);
     return t[size_t(i)] * (1.0 - f) + t[size_t(i) + 1] * f;

@@ -40,7 +40,7 @@ struct Spectrum {
     size_t size() const { return lambdaNm.size(); }
     /// eta and k at one wavelength, linear in lambda between the table's rows (as pbrt-v4 does).
     dvec2 etaK(double lambdaNm) const;
-    /// F_Spectral at cos theta = i / (kFresnelTableSize - 1), i = 0 .. kFresnelTableSize - 1, in double:
+    /// F_Spectral at cos theta = (i / (kFresnelTableSize - 1))^2, i = 0 .. kFresnelTableSize - 1, in double:
     /// built on first use (once per spectrum, which loadSpectrum caches), shared by GL and the twin.
     const std::vector<dvec3>& fresnelTable() const;
 
@@ -67,15 +67,16 @@ std::shared_ptr<const Spectrum> loadSpectrum(const std::string& dataDir, const s
 /// Spectral Fresnel: F = sum_i w_i F_Conductor(cosTheta_i, eta_i, k_i), linear sRGB.
 dvec3 F_Spectral(double cosTheta_i, const Spectrum& s);
 
-/// Entries of the spectral Fresnel table over cos theta_d in [0, 1], uniformly spaced, read by linear
-/// interpolation (--spectral-fresnel table). Linear interpolation errs by h^2/8 max|F''|, largest near
-/// grazing: at 1024 entries the worst over cos in [0, 1] against F_Spectral is 1.5e-6 (copper) and 2.6e-6
-/// (gold), measured by tests/brdf/test_spectral.cpp (the table promises 1e-5). On the GPU it is a uniform
-/// vec3 array.
-constexpr int kFresnelTableSize = 1024;
+/// Entries of the spectral Fresnel table over cos theta_d in [0, 1], read by linear interpolation
+/// (--spectral-fresnel table). Entry i holds F at cos = (i / (N - 1))^2, spaced evenly in sqrt(cos): linear
+/// interpolation errs by h^2/8 max|F''|, and F bends most near grazing (the worst error of an even spacing
+/// in cos sits in its first interval). Worst over cos in [0, 1] against F_Spectral: see
+/// tests/brdf/test_spectral.cpp (the table promises 1e-5). On the GPU it is a uniform vec3 array of 512
+/// (the NDF table's budget, 512 vec4): an even spacing in cos needed 1024 entries for gold.
+constexpr int kFresnelTableSize = 512;
 
-/// The table's F: F_Spectral's table (Spectrum::fresnelTable) interpolated linearly in cosTheta_i,
-/// clamped to [0, 1]; the GLSL twin is F_SpectralTable in shaders/brdf_gl.glsl.
+/// The table's F: F_Spectral's table (Spectrum::fresnelTable) interpolated linearly in sqrt(cosTheta_i),
+/// cosTheta_i clamped to [0, 1]; the GLSL twin is F_SpectralTable in shaders/brdf_gl.glsl.
 dvec3 F_SpectralTable(double cosTheta_i, const Spectrum& s);
 
 }  // namespace hilite::brdf

@@ -9,7 +9,7 @@
 // The subpixel boundary is on the Pareto front of every scene measured (pixel in/out costs the same time
 // and is 5-30x less accurate; supersampling multiplies the time by n^2 for less than the size would give),
 // so the only knob chosen here is the size.
-// --spectral-fresnel is read, not chosen: the table moves the aspect by at most 6.7e-8 against the exact sum
+// --spectral-fresnel is read, not chosen: the table moves the aspect by at most 5.5e-8 against the exact sum
 // (the copper cases of experiments/accuracy_cost on its 8 scenes), below the smallest tolerance (1e-5).
 
 #include "measurement/tolerance.hpp"

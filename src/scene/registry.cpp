@@ -96,7 +96,7 @@ std::vector<Param> build() {
          "Fresnel preset: " + materials + " (copper, gold: spectral)", "microfacet models", hasMaterial, "material",
          [](const Resolved& r) -> json { return r.values.text("material"); }});
     add({"spectral_fresnel", T::Material, K::Choice, "table", 0, 0, false, false, {"table", "exact"}, "",
-         "table (F over cos theta_d, 1024 entries computed in double per metal, linear between them: within 1e-5 of "
+         "table (F over cos theta_d, 512 entries computed in double per metal, linear between them: within 1e-5 of "
          "exact, at the cost of one lookup) | exact (the sum over the wavelengths at every pixel: 81 on the GPU)",
          "fresnel spectral", spectral, "spectral_fresnel",
          [](const Resolved& r) -> json { return r.scene.brdf.spectralTable ? "table" : "exact"; }});

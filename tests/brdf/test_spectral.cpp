@@ -117,16 +117,16 @@ TEST_CASE("brdf::F_SpectralTable within 1e-5 of F_Spectral over cos theta_d in [
         for (int step : {brdf::kGpuStepNm, brdf::kFullStepNm}) {
             const auto s = brdf::loadSpectrum(HILITE_DATA_DIR, metal, step);
             CHECK(s->fresnelTable().size() == size_t(brdf::kFresnelTableSize));
-            // 16 points per table interval (its ends, where the table is exact, included): the error of linear
-            // interpolation peaks mid-interval.
+            // 16 points per table interval (spaced in sqrt(cos), as the entries are; their ends, where the table
+            // is exact, included: the error peaks mid-interval), and as many spaced evenly in cos.
             const int n = 16 * (brdf::kFresnelTableSize - 1);
             double worst = 0.0, worstAt = 0.0;
-            for (int i = 0; i <= n; ++i) {
-                const double c = double(i) / n;
-                const dvec3 d = glm::abs(brdf::F_SpectralTable(c, *s) - brdf::F_Spectral(c, *s));
-                const double e = std::max({d.x, d.y, d.z});
-                if (e > worst) worst = e, worstAt = c;
-            }
+            for (int i = 0; i <= n; ++i)
+                for (double c : {double(i) / n * (double(i) / n), double(i) / n}) {
+                    const dvec3 d = glm::abs(brdf::F_SpectralTable(c, *s) - brdf::F_Spectral(c, *s));
+                    const double e = std::max({d.x, d.y, d.z});
+                    if (e > worst) worst = e, worstAt = c;
+                }
             CAPTURE(metal);
             CAPTURE(step);
             MESSAGE(metal << " (" << s->size() << " wavelengths): table worst error " << worst << " at cos " << worstAt);
