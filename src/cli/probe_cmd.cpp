@@ -25,7 +25,7 @@ Action addProbeShader(CLI::App& app) {
             std::signal(std::atoi(sig), SIG_DFL);
             std::raise(std::atoi(sig));
         }
-        measurement::runShaderProbe(r.scene, scene::backendOf(r));
+        measurement::runShaderProbe(r.scene, scene::backendOf(r), r.gpu);
         return 0;
     };
 }

@@ -52,7 +52,7 @@ int runRender(const RenderFlags& f) {
 
     if (scene.brdfFile)
         for (const std::string& note : scene.brdfFile->notes) std::cerr << "hilite: note: " << note << "\n";
-    measurement::probeShader(scene, r.backend, r.shaderTimeoutS);  // a .brdf runs in a child first, time-limited
+    measurement::probeShader(scene, r.backend, r.shaderTimeoutS, r.gpu);  // a .brdf runs in a child first, time-limited
     gl::Context context(scene::backendOf(r), r.gpu);
     render::Renderer renderer(context);
     renderer.setShaderTimeLimit(r.shaderTimeoutS);

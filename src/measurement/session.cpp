@@ -19,7 +19,7 @@ render::Renderer& Session::rendererFor(const scene::Resolved& r) {
             file->path + "|" + brdf_file::valuesText(*file) + "|" + render::toString(r.scene.light.type);
         if (m_probed.insert(key).second) {
             for (const std::string& note : file->notes) std::cerr << "hilite: note: " << note << "\n";
-            probeShader(r.scene, backend, r.shaderTimeoutS);
+            probeShader(r.scene, backend, r.shaderTimeoutS, r.gpu);
         }
     }
     if (!m_renderer) {

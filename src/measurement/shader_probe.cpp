@@ -52,13 +52,14 @@ std::string probeExecutable() {
 }
 
 /// The child's command line: the scene's .brdf, its values and light, nothing else.
-std::vector<std::string> probeArgs(const std::string& exe, const render::Scene& s, const std::string& backend) {
+std::vector<std::string> probeArgs(const std::string& exe, const render::Scene& s, const std::string& backend, int gpu) {
     std::vector<std::string> a = {exe, "probe-shader", "--brdf", s.brdfFile->path};
     for (const std::string& v : brdf_file::valueAssignments(*s.brdfFile)) a.insert(a.end(), {"--param", v});
     a.insert(a.end(), {"--incidence", number(s.light.incidenceDeg), "--azimuth", number(s.light.azimuthDeg),
                        "--tangent-angle", number(s.brdf.tangentAngleDeg), "--light", render::toString(s.light.type),
                        "--light-distance", number(s.light.distance), "--distance", number(s.eyeDistance)});
     if (!backend.empty()) a.insert(a.end(), {"--gl-backend", backend});
+    if (gpu >= 0) a.insert(a.end(), {"--gpu", std::to_string(gpu)});
     return a;
 }
 
@@ -137,9 +138,9 @@ std::string probeFailure(const std::string& path, int status, const std::string&
     return path + ": the shader probe ended abnormally (wait status " + std::to_string(status) + "); " + said;
 }
 
-void probeShader(const render::Scene& scene, const std::string& backend, double timeoutSeconds) {
+void probeShader(const render::Scene& scene, const std::string& backend, double timeoutSeconds, int gpu) {
     if (!scene.brdfFile) return;
-    const std::vector<std::string> args = probeArgs(probeExecutable(), scene, backend);
+    const std::vector<std::string> args = probeArgs(probeExecutable(), scene, backend, gpu);
     std::vector<char*> argv;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -187,9 +188,9 @@ void probeShader(const render::Scene& scene, const std::string& backend, double 
 }
 
 /// The child: compile both outputs and render the probe views; any failure is the usual one-line error.
-void runShaderProbe(render::Scene scene, gl::Backend backend) {
+void runShaderProbe(render::Scene scene, gl::Backend backend, int gpu) {
     const double incidence = scene.light.incidenceDeg;
-    gl::Context context(backend);
+    gl::Context context(backend, gpu);
     render::Renderer renderer(context);
     ImageF img;
     for (double inc : {incidence, 0.0, 45.0, 80.0}) {

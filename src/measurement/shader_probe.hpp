@@ -16,7 +16,8 @@ namespace hilite::measurement {
 /// \brief Runs the probe for a .brdf scene (nothing for a built-in model).
 /// Throws InputError "PATH: shader took longer than T s on a probe render ...; stopped" past the limit, and
 /// the child's own one-line InputError when the .brdf does not build (its GLSL errors name its lines).
-void probeShader(const render::Scene& scene, const std::string& backend, double timeoutSeconds);
+/// `gpu`: the EGL device (--gpu), -1 unset; the child renders on the context the caller will.
+void probeShader(const render::Scene& scene, const std::string& backend, double timeoutSeconds, int gpu = -1);
 
 /// The message for a probe child that ended without its own error line: the .brdf file, how the child ended
 /// (signal number and name, or exit status) and the last line it printed ("it printed nothing" if none).
@@ -29,6 +30,6 @@ void setProbeExecutable(const std::string& path);
 
 /// What the child does (the hidden subcommand `hilite probe-shader`): compiles both outputs and renders the
 /// probe views; a failure is the usual one-line InputError.
-void runShaderProbe(render::Scene scene, gl::Backend backend);
+void runShaderProbe(render::Scene scene, gl::Backend backend, int gpu = -1);
 
 }  // namespace hilite::measurement
