@@ -57,7 +57,7 @@ def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None):
     if shard is not None and not isinstance(shard, str):
         raise TypeError(f"shard: expected 'K/N', got {type(shard).__name__}")
     if gl_backend is not None and not isinstance(gl_backend, str):
-        raise TypeError(f"gl_backend: expected 'auto', 'osmesa' or 'egl', got {type(gl_backend).__name__}")
+        raise TypeError(f"gl_backend: expected 'auto', 'osmesa', 'egl' or 'egl-device', got {type(gl_backend).__name__}")
     return _hilite.run(_os.fspath(experiment), "" if out is None else _os.fspath(out), resume, shard or "",
                        gl_backend or "")
 
