@@ -27,7 +27,7 @@ std::vector<nlohmann::json> jsonLines(const std::string& out) {
 
 /// A smaller sweep than the default (0:85:5 x 5 thresholds) so the suite stays short; the README and the
 /// benchmark run the default.
-const char* kSweep = " --incidence 0:80:10 --thresholds 0.1,0.5,0.9 --json";
+const char* kSweep = " --incidence 0:80:20 --thresholds 0.1,0.5,0.9 --size 128 --json";
 
 }  // namespace
 
@@ -68,7 +68,7 @@ TEST_CASE("cli::fit: Phong fitted to a GGX table leaves an aspect residual that 
     hilite_test::TempDir dir("hilite-fit-phong");
     const std::string file = dir / "ggx.binary";
     REQUIRE(hilite_test::hilite("brdf tabulate --model ggx --roughness 0.1 -o " + file).code == 0);
-    const auto r = hilite_test::hilite("fit --target " + file + " --models phong,ggx --incidence 0:80:10 -o " + (dir / "out") +
+    const auto r = hilite_test::hilite("fit --target " + file + " --models phong,ggx --incidence 0:80:10 --size 128 -o " + (dir / "out") +
                                        " --json", true);
     REQUIRE(r.code == 0);
     const auto fits = jsonLines(r.out);
