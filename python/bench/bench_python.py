@@ -96,7 +96,7 @@ def main(argv=None):
     if not os.access(bench, os.X_OK):
         fail(f"--build {args.build}: no {bench} (cmake --build {args.build} --target hilite_bench)")
     sys.path.insert(0, os.path.join(args.build, "python"))
-    sys.path.insert(0, HERE)
+    sys.path.insert(0, os.path.join(HERE, "..", "..", "bench"))  # numpy_baseline.py
     try:
         import hilite
     except ImportError as e:

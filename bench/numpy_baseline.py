@@ -5,7 +5,7 @@ Scene (fixed; bench_python.py measures hilite on the same one): a distant light 
 plane, GGX alpha 0.1, height-correlated Smith G2 (what --geometry smith is, src/brdf/params.hpp), Schlick
 F0 0.04 (grey, so the luminance is the value), irradiance 1. The lobe is L(we) = f(wi, we) E cos(theta_i).
 
-The work per angle, as ../../../shared/notes/measurement.md defines the measurement and
+The work per angle, as ../../shared/notes/measurement.md defines the measurement and
 src/measurement/{lobe_survey,measure_scene}.cpp does it:
   (a) a survey of the hemisphere (29 rings dense toward the horizon x 72 azimuths, as lobe_survey.cpp),
       the global peak by compass climbs from the mirror direction and the survey's best maxima, the parts of
@@ -20,7 +20,7 @@ Vectorised float64; the Python loops run over parts, aiming rounds and climb ste
 Limits: this scene only (no other model, light or diagnosis), and a pixel is in the region by its centre
 (hilite interpolates the boundary), which costs it some 1e-4 of aspect at 512^2.
 
-Run as a script to compare with the CLI:  /usr/bin/python3 python/bench/numpy_baseline.py --cli build/bin/hilite
+Run as a script to compare with the CLI:  /usr/bin/python3 bench/numpy_baseline.py --cli build/bin/hilite
 """
 
 import argparse
