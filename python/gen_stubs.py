@@ -74,6 +74,12 @@ class MachineError(RuntimeError): ...
                  f"    maps: {maps},\n" + keywords(False) + f") -> {ret}: ...\n")
     init += "\n"
     init += "def columns(rows: Sequence[Mapping[str, Any]]) -> dict[str, npt.NDArray[Any]]:\n" + doc(hilite.columns) + "    ...\n\n"
+    init += ("def fit(\n    target: str | os.PathLike[str] | None = None,\n    *,\n    models: Sequence[str] = ...,\n"
+             "    thresholds: Sequence[float] = ...,\n    weights: Sequence[float] | None = None,\n"
+             "    fit_anisotropy: bool = False,\n    fit_f0: bool = False,\n    fit_geometry: str | None = None,\n"
+             "    fit_fresnel: str | None = None,\n    max_evaluations: int = 80,\n"
+             "    scene: Scene | str | os.PathLike[str] | None = None,\n" + keywords(False) +
+             ") -> list[dict[str, Any]]:\n" + doc(hilite.fit) + "    ...\n\n")
     init += ("def run(experiment: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *, resume: bool = False,\n"
              "        shard: str | None = None, gl_backend: str | None = None) -> dict[str, Any]:\n" + doc(hilite.run) + "    ...\n\n")
     init += ("def merge(shards: Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *,\n"

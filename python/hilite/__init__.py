@@ -5,6 +5,7 @@
     >>> cols = hilite.measure(model="ggx", incidence=np.arange(0, 86.0))          # arrays: columns
     >>> import pandas; pandas.DataFrame(cols)
     >>> img = hilite.render(model="ggx", incidence=60, view="photo")              # (H, W, 3) float32
+    >>> hilite.fit("gold-metallic-paint.binary")                                   # which model fits: ranked
 
 Every scene and measurement parameter of the CLI is a keyword (its scene-file key: ``roughness_y`` is
 ``--roughness-y``), read and checked by the same code as the CLI's flags: a refused value raises
@@ -29,7 +30,7 @@ if "HILITE_SHARE_DIR" not in _os.environ and _os.path.isdir(_os.path.join(_build
 
 from . import _hilite  # noqa: E402
 from ._params import InputError, REGISTRY, PARAMS  # noqa: E402,F401
-from ._measure import measure, render, columns  # noqa: E402,F401
+from ._measure import measure, render, columns, fit  # noqa: E402,F401
 from ._scene import Scene  # noqa: E402,F401
 from . import brdf  # noqa: E402,F401
 

@@ -98,6 +98,49 @@ def render(scene=None, *, maps=False, **params):
     return (img, m) if maps else img
 
 
+def fit(target=None, *, models=("phong", "blinn", "beckmann", "ggx"), thresholds=(0.1, 0.25, 0.5, 0.75, 0.9),
+        weights=None, fit_anisotropy=False, fit_f0=False, fit_geometry=None, fit_fresnel=None, max_evaluations=80,
+        scene=None, **params):
+    """Fits analytic models to a target's highlight and ranks them: the CLI's `hilite fit --json` in process.
+
+    `target`: a MERL .binary table or a BRDF Explorer .brdf file (str or os.PathLike), or None for a target
+    given by the material keywords (model="ggx", roughness=0.1, ...); `scene` and the other keywords (light,
+    camera, measurement: incidence defaults to "0:85:5", size to 256) apply to the target and every model.
+    `models`, `thresholds`, `weights`, `fit_anisotropy`, `fit_f0`, `fit_geometry`, `fit_fresnel` and
+    `max_evaluations` are the CLI's --models, --thresholds, ... Returns one dict per model, in the order of
+    `models`: model, params (by registry name), residual (weighted RMS of ln(fit / target) of the semi-axes),
+    rank (1: the best), target, evaluations, time_ms, stop, thresholds, weights, incidence_deg,
+    aspect_threshold, target_aspect, aspect and aspect_residual (per angle; None where a sample has no shape).
+    Raises InputError as the CLI refuses."""
+    if target is not None:
+        if not isinstance(target, (str, os.PathLike)):
+            raise TypeError(f"target: expected a .binary or .brdf file name, got {type(target).__name__}")
+        t = os.fspath(target)
+        ext = os.path.splitext(t)[1]
+        if ext not in (".binary", ".brdf"):
+            raise InputError(f"target: '{t}' must be a MERL .binary table or a BRDF Explorer .brdf file "
+                             "(or give the target by its material keywords)")
+        key = "measured" if ext == ".binary" else "brdf"
+        if params.get(key) is not None:
+            raise InputError(f"{key}: not with target (give one)")
+        params = dict(params, **{key: t})
+    for name, v in (("models", models), ("thresholds", thresholds)):
+        if isinstance(v, (str, bytes)) or not hasattr(v, "__iter__"):
+            raise TypeError(f"{name}: expected a list, got {type(v).__name__}")
+    for name, v in (("fit_anisotropy", fit_anisotropy), ("fit_f0", fit_f0)):
+        if not isinstance(v, bool):
+            raise TypeError(f"{name}: expected True or False, got {type(v).__name__}")
+    if isinstance(max_evaluations, bool) or not isinstance(max_evaluations, int) or not 1 <= max_evaluations <= 10000:
+        raise InputError(f"max_evaluations: an integer in [1, 10000] (got {max_evaluations!r})")
+    base = _scene_items(scene)
+    items = items_of(params)
+    given = {n for (n, _, _) in base + items}
+    defaults = [(n, t, "") for n, t in (("incidence", "0:85:5"), ("size", "256")) if n not in given]
+    return _hilite.fit(defaults + base + items, [str(m) for m in models], [float(x) for x in thresholds],
+                       [] if weights is None else [float(x) for x in weights], fit_anisotropy, fit_f0,
+                       fit_geometry or "", fit_fresnel or "", max_evaluations)
+
+
 _KEYWORDS = signature_doc()
 
 measure.__doc__ = f"""Measures the highlight of a scene: the CLI's `hilite measure --json` in process.

@@ -11,6 +11,7 @@
 #include "brdf/integrate.hpp"
 #include "core/error.hpp"
 #include "core/text.hpp"
+#include "experiments/fit.hpp"
 #include "experiments/results.hpp"
 #include "experiments/run.hpp"
 #include "hilite/hilite.hpp"
@@ -75,6 +76,39 @@ py::list measureScenes(const std::vector<Items>& scenes) {
     }
     py::list out;
     for (const auto& j : rows) out.append(python::toPython(j));
+    return out;
+}
+
+/// `hilite fit --json` in process: one object per model (experiments/fit.hpp), every scene resolved first.
+py::list fitScene(const Items& items, const std::vector<std::string>& models, const std::vector<double>& thresholds,
+                  const std::vector<double>& weights, bool anisotropy, bool f0, const std::string& geometry,
+                  const std::string& fresnel, int maxEvaluations) {
+    std::vector<std::string> rows;
+    {
+        py::gil_scoped_release release;
+        const scene::Values values = python::values(items);
+        experiments::FitOptions o;
+        o.models = models;
+        o.thresholds = thresholds;
+        o.weights = weights;
+        o.anisotropy = anisotropy;
+        o.f0 = f0;
+        o.geometry = geometry;
+        o.fresnel = fresnel;
+        o.maxEvaluations = maxEvaluations;
+        experiments::checkFitScenes(values, o);
+        const scene::Resolved target = scene::resolve(values);
+        worker().run([&](measurement::Session& s) {
+            if (!target.reference && !target.setup.cpu) {
+                checkBackend(s, target);
+                s.rendererFor(target);  // a .brdf target's probe, before anything is measured
+            }
+            const experiments::FitResult r = experiments::fitModels(s, values, o);
+            for (const auto& m : r.fits) rows.push_back(experiments::toJson(r, m).dump());
+        });
+    }
+    py::list out;
+    for (const auto& j : rows) out.append(python::toPython(nlohmann::json::parse(j)));
     return out;
 }
 
@@ -296,6 +330,8 @@ PYBIND11_MODULE(_hilite, m) {
     m.def("did_you_mean", &didYouMean, py::arg("word"), py::arg("candidates"));  // the CLI's own suggestion
     m.def("measure", &measureScenes, py::arg("scenes"));
     m.def("render", &renderScene, py::arg("items"), py::arg("maps"));
+    m.def("fit", &fitScene, py::arg("items"), py::arg("models"), py::arg("thresholds"), py::arg("weights"),
+          py::arg("anisotropy"), py::arg("f0"), py::arg("geometry"), py::arg("fresnel"), py::arg("max_evaluations"));
     m.def("fresnel", &fresnelOf, py::arg("items"), py::arg("spectral"));
     m.def("albedo", &albedoOf, py::arg("items"));
     m.def("bihemispherical_albedo", &bihemispherical, py::arg("items"));

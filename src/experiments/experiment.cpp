@@ -384,12 +384,7 @@ void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     o.anisotropy = f.boolean("anisotropy", false);
     o.f0 = f.boolean("f0", false);
     o.geometry = f.string("geometry", "");
-    static const std::vector<std::string> geometries = {"none", "implicit", "cook-torrance", "smith-separable", "smith"};
-    if (!o.geometry.empty() && std::find(geometries.begin(), geometries.end(), o.geometry) == geometries.end())
-        f.fail("geometry", "'" + printable(o.geometry) + "' (allowed: " + join(geometries) + ")");
     o.fresnel = f.string("fresnel", "");
-    if (!o.fresnel.empty() && o.fresnel != "none" && o.fresnel != "schlick")
-        f.fail("fresnel", "'" + printable(o.fresnel) + "' (allowed: none, schlick)");
     if (f.node("max_evaluations")) {
         const auto n = f.numbers("max_evaluations");
         if (n.size() != 1 || !(n[0] >= 1 && n[0] <= 10000) || n[0] != std::floor(n[0]))

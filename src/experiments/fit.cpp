@@ -352,6 +352,13 @@ void checkFitOptions(const FitOptions& o) {
     if (o.f0 && std::none_of(o.models.begin(), o.models.end(),
                              [](const std::string& m) { return brdf::isMicrofacet(*brdf::parseModel(m)); }))
         throw InputError("--fit-f0: needs a microfacet model (blinn, gaussian, beckmann, ggx) among --models");
+    static const std::vector<std::string> geometries = {"none", "implicit", "cook-torrance", "smith-separable", "smith"};
+    if (!o.geometry.empty() && std::find(geometries.begin(), geometries.end(), o.geometry) == geometries.end())
+        throw InputError("--fit-geometry: '" + o.geometry + "' (allowed: " + join(geometries) + ")");
+    if (!o.fresnel.empty() && o.fresnel != "none" && o.fresnel != "schlick")
+        throw InputError("--fit-fresnel: '" + o.fresnel + "' (allowed: none, schlick)");
+    if (o.maxEvaluations < 1 || o.maxEvaluations > 10000)
+        throw InputError("--max-evaluations: an integer in [1, 10000] (got " + std::to_string(o.maxEvaluations) + ")");
     if (o.f0 && !o.fresnel.empty() && o.fresnel != "schlick")
         throw InputError("--fit-f0: fits Schlick's F0, not with --fit-fresnel " + o.fresnel);
 }
