@@ -42,6 +42,7 @@
 #include "brdf/terms.hpp"
 #include "core/error.hpp"
 #include "experiments/experiment.hpp"
+#include "experiments/fit.hpp"
 #include "experiments/run.hpp"
 #include "gl/context.hpp"
 #include "measure/highlight.hpp"
