@@ -5,7 +5,7 @@
 
 #include <glad/gl.h>
 
-#include <regex>
+#include <cctype>
 #include <sstream>
 
 namespace hilite::gl {
@@ -25,21 +25,50 @@ std::string joinSources(const std::vector<SourcePiece>& pieces) {
     return out;
 }
 
+namespace {
+
+/// The first "K:N(C)" of a log line (Mesa's location: source string, line, column), or at = npos. By hand, not
+/// std::regex: GCC 12's <regex> warns (-Wmaybe-uninitialized, in libstdc++) in the sanitizer build.
+struct Location {
+    size_t at = std::string::npos, length = 0;
+    std::string k, n, c;
+};
+Location findLocation(const std::string& s) {
+    auto digitsFrom = [&](size_t i) {
+        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+        return i;
+    };
+    for (size_t i = 0; i < s.size(); ++i) {
+        // A match starting inside a number would have started at its first digit (leftmost, as regex_search).
+        if (!std::isdigit(static_cast<unsigned char>(s[i])) || (i > 0 && std::isdigit(static_cast<unsigned char>(s[i - 1]))))
+            continue;
+        const size_t a = digitsFrom(i);
+        if (a >= s.size() || s[a] != ':') continue;
+        const size_t b = digitsFrom(a + 1);
+        if (b == a + 1 || b >= s.size() || s[b] != '(') continue;
+        const size_t c = digitsFrom(b + 1);
+        if (c == b + 1 || c >= s.size() || s[c] != ')') continue;
+        return {i, c + 1 - i, s.substr(i, a - i), s.substr(a + 1, b - a - 1), s.substr(b + 1, c - b - 1)};
+    }
+    return {};
+}
+
+}  // namespace
+
 std::string translateLog(const std::string& log, const std::vector<SourcePiece>& pieces) {
     // Mesa writes "K:N(C): error: ...": K the source-string number set by #line, N the line.
-    static const std::regex loc(R"((\d+):(\d+)\((\d+)\))");
     std::string out;
     std::istringstream in(log);
     for (std::string line; std::getline(in, line);) {
-        std::smatch m;
-        if (std::regex_search(line, m, loc)) {
-            size_t k = std::stoul(m[1]);
-            long n = std::stol(m[2]);
+        const Location m = findLocation(line);
+        if (m.at != std::string::npos) {
+            size_t k = std::stoul(m.k);
+            long n = std::stol(m.n);
             if (n >= kLineStride) k = size_t(n / kLineStride), n %= kLineStride;  // the line names the piece
             if (k < pieces.size()) {
                 if (k == 0) n += pieces[0].firstLine - 1;
-                line = m.prefix().str() + pieces[k].file + ":" + std::to_string(n) + ":" + m[3].str() +
-                       m.suffix().str();
+                line = line.substr(0, m.at) + pieces[k].file + ":" + std::to_string(n) + ":" + m.c +
+                       line.substr(m.at + m.length);
             }
         }
         out += line + "\n";

@@ -102,3 +102,18 @@ TEST_CASE("gl::Context --gpu beyond the devices is an input error naming the fla
         CHECK(std::string(e.what()).find("[0, " + std::to_string(count) + ")") != std::string::npos);
     }
 }
+
+TEST_CASE("gl::translateLog names each piece's file and line in Mesa's K:N(C) locations, and leaves the rest") {
+    using hilite::gl::SourcePiece;
+    const std::vector<SourcePiece> pieces = {{"<generated>", 1, "#version 450\n"}, {"shaders/brdf.glsl", 40, "x\n"}};
+    const long n = 1L * hilite::gl::kLineStride + 43;  // piece 1, its line 43
+    const std::string log = "1:" + std::to_string(n) + "(7): error: 'foo' undeclared\n"
+                            "0:3(12): warning: unused\n"
+                            "no location here: 5:x(1) and 12:(3)\n"
+                            "at 0:" + std::to_string(n) + "(2): error: redefined\n";
+    CHECK(hilite::gl::translateLog(log, pieces) ==
+          "shaders/brdf.glsl:43:7: error: 'foo' undeclared\n"
+          "<generated>:3:12: warning: unused\n"
+          "no location here: 5:x(1) and 12:(3)\n"
+          "at shaders/brdf.glsl:43:2: error: redefined\n");
+}
