@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/fit.hpp"
+#include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -61,7 +62,7 @@ void printTable(const experiments::FitResult& r) {
     for (const auto& m : r.fits) std::printf(" %14s", m.model.c_str());
     std::printf("\n");
     const size_t nt = r.thresholds.size();
-    const size_t jt = size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+    const size_t jt = experiments::aspectIndex(r);
     std::vector<std::vector<double>> d;
     for (const auto& m : r.fits) d.push_back(experiments::aspectResiduals(r, m));
     for (size_t i = 0; i < r.angles.size(); ++i) {
@@ -90,15 +91,16 @@ int runFit(FitFlags& f) {
     f.options.thresholds = numbers("--thresholds", f.thresholds);
     if (!f.weights.empty()) f.options.weights = numbers("--weights", f.weights);
     experiments::checkFitOptions(f.options);
-    if (!f.output.empty()) {  // checked before anything is measured
-        std::error_code ec;
-        if (std::filesystem::exists(f.output, ec) && !std::filesystem::is_directory(f.output, ec))
-            throw InputError("-o: '" + f.output + "' exists and is not a folder");
+    if (!f.output.empty()) {  // checked before anything is measured: a folder that can be made, files replaceable
+        io::checkOutputDir(f.output, "-o");
+        if (std::filesystem::is_directory(f.output))  // files of an earlier fit there: replaceable ones only
+            for (const char* file : {"fit.json", "fit.csv", "fit_aspect.png", "fit_residual.png"})
+                io::checkWritable(f.output + "/" + file, "-o");
     }
     measurement::Session session;
     const experiments::FitResult r = experiments::fitModels(session, values, f.options);
     if (!f.output.empty()) {
-        std::filesystem::create_directories(f.output);
+        io::makeOutputDir(f.output, "-o");
         std::string why;
         if (!experiments::writeFitFolder(f.output, r, why)) std::cerr << "hilite: warning: fit plots not made: " << why << "\n";
     }

@@ -8,6 +8,7 @@
 #include "io/image_io.hpp"
 #include "measurement/diagnose.hpp"
 #include "measurement/measure_scene.hpp"
+#include "measurement/row.hpp"
 #include "render/renderer.hpp"
 #include "scene/registry.hpp"
 
@@ -62,21 +63,26 @@ std::string angleList(const std::vector<double>& angles) {
     return join(t, ",");
 }
 
-FitSample sampleOf(const nlohmann::json& row, double threshold) {
-    FitSample s;
-    s.incidence = row.value("incidence_deg", 0.0);
-    s.threshold = threshold;
-    s.major = row.value("major_deg", 0.0);
-    s.minor = row.value("minor_deg", 0.0);
-    s.aspect = row.value("aspect", 0.0);
-    s.peak = row.value("peak", 0.0);
+/// A sample from a measurement's numbers and its flags (the row's spelling); not usable without a finite shape.
+FitSample sampleOf(double incidence, double threshold, double major, double minor, double aspect, double peak,
+                   const std::vector<std::string>& flags) {
+    FitSample s{incidence, threshold, major, minor, aspect, peak, false, ""};
     std::vector<std::string> bad;
-    for (const auto& f : row.value("flags", nlohmann::json::array()))
+    for (const std::string& f : flags)
         for (const char* u : kUnusable)
-            if (f.get<std::string>() == u) bad.push_back(u);
+            if (f == u) bad.push_back(u);
     s.usable = bad.empty() && s.major > 0 && s.minor > 0 && std::isfinite(s.major) && std::isfinite(s.minor);
     s.why = bad.empty() && !s.usable ? "no shape" : join(bad, ",");
     return s;
+}
+
+/// A row of Session::measure (a non-finite number is null there: rowNumber reads it as NaN).
+FitSample sampleOf(const nlohmann::json& row, double threshold) {
+    std::vector<std::string> flags;
+    for (const auto& f : row.value("flags", nlohmann::json::array())) flags.push_back(f.get<std::string>());
+    return sampleOf(measurement::rowNumber(row, "incidence_deg"), threshold, measurement::rowNumber(row, "major_deg"),
+                    measurement::rowNumber(row, "minor_deg"), measurement::rowNumber(row, "aspect"),
+                    measurement::rowNumber(row, "peak"), flags);
 }
 
 /// The resolved scenes of one sweep: one per threshold, each over every angle.
@@ -91,15 +97,9 @@ std::vector<scene::Resolved> sweepScenes(scene::Values v, const FitResult& r) {
 }
 
 FitSample sampleOf(const measure::Shape& shape, double incidence, double threshold) {
-    nlohmann::json flags = nlohmann::json::array();
+    std::vector<std::string> flags;
     for (measure::Flag f : shape.flags) flags.push_back(measure::toString(f));
-    return sampleOf(nlohmann::json{{"incidence_deg", incidence},
-                                   {"major_deg", shape.major_deg},
-                                   {"minor_deg", shape.minor_deg},
-                                   {"aspect", shape.aspect},
-                                   {"peak", shape.peak},
-                                   {"flags", flags}},
-                    threshold);
+    return sampleOf(incidence, threshold, shape.major_deg, shape.minor_deg, shape.aspect, shape.peak, flags);
 }
 
 /// The peak of a measurement image (channel 0 of (L, u, v, w)) between pixels: the brightest pixel raised by the
@@ -461,9 +461,13 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
     return r;
 }
 
+size_t aspectIndex(const FitResult& r) {
+    return size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+}
+
 std::vector<double> aspectResiduals(const FitResult& r, const ModelFit& m) {
     const size_t nt = r.thresholds.size();
-    const size_t jt = size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+    const size_t jt = aspectIndex(r);
     std::vector<double> out;
     for (size_t i = 0; i < r.angles.size(); ++i) {
         const FitSample &t = r.samples[i * nt + jt], &f = m.samples[i * nt + jt];
@@ -489,7 +493,7 @@ nlohmann::ordered_json toJson(const FitResult& r, const ModelFit& m) {
     nlohmann::ordered_json res = nlohmann::ordered_json::array(), target = nlohmann::ordered_json::array(),
                            fitted = nlohmann::ordered_json::array();
     const size_t nt = r.thresholds.size();
-    const size_t jt = size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+    const size_t jt = aspectIndex(r);
     const auto d = aspectResiduals(r, m);
     for (size_t i = 0; i < d.size(); ++i) {
         res.push_back(std::isfinite(d[i]) ? nlohmann::ordered_json(d[i]) : nlohmann::ordered_json());
@@ -528,7 +532,7 @@ bool writeFitFolder(const std::string& dir, const FitResult& r, std::string& why
     // Plots: aspect at the aspect threshold against incidence, the target and each fit; and the residual.
     std::vector<nlohmann::json> aspectRows, residualRows;
     const size_t nt = r.thresholds.size();
-    const size_t jt = size_t(std::find(r.thresholds.begin(), r.thresholds.end(), r.aspectThreshold) - r.thresholds.begin());
+    const size_t jt = aspectIndex(r);
     for (size_t i = 0; i < r.angles.size(); ++i)
         if (r.samples[i * nt + jt].usable)
             aspectRows.push_back({{"incidence", r.angles[i]}, {"aspect", r.samples[i * nt + jt].aspect}, {"series", "target"}});

@@ -74,6 +74,9 @@ void checkFitScenes(const scene::Values& target, const FitOptions& o);
 /// before the first measurement (InputError).
 FitResult fitModels(measurement::Session& session, const scene::Values& target, const FitOptions& o);
 
+/// The index of r.aspectThreshold in r.thresholds (the samples' column of the aspect residuals).
+size_t aspectIndex(const FitResult& r);
+
 /// The model's aspect minus the target's at each incidence, at r.aspectThreshold (NaN where either sample
 /// is not usable).
 std::vector<double> aspectResiduals(const FitResult& r, const ModelFit& m);

@@ -104,6 +104,15 @@ TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, n
         {"--model ggx --models phong --fit-anisotropy", "--fit-anisotropy: needs beckmann or ggx"},
         {"--model ggx --roughness -1", "--roughness"},
     };
+    // An output folder that cannot be made, or a file in its place: refused before anything is fitted.
+    { std::ofstream(dir / "a_file") << "x"; }
+    for (const std::string& o : {std::string("/proc/hilite-no-such/out"), std::string(dir / "a_file")}) {
+        CAPTURE(o);
+        const auto r = hilite_test::hilite("fit --model ggx --models ggx -o " + o);
+        CHECK(r.code == 2);
+        CHECK(hilite_test::lines(r.out) == 1);
+        CHECK(r.out.find("-o: ") != std::string::npos);
+    }
     for (const Case& c : cases) {
         CAPTURE(c.args);
         const auto r = hilite_test::hilite("fit " + c.args + " -o " + out);
