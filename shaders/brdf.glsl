@@ -258,6 +258,25 @@ INLINE VEC3 Fd_OrenNayar(VEC3 rho, REAL sigma, REAL NoL, REAL NoV, REAL LoV) {
 }
 //@end
 
+//@block MS_KullaConty needs common
+// Multiple scattering as energy compensation: f_ms = (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)) F_ms, E the
+// lobe's single-scattering albedo with F = 1, E_avg its cosine average, F_ms the colour of the further bounces.
+// Kulla & Conty 2017, "Revisiting Physically Based Shading at Imageworks"; tables: src/brdf/energy.hpp.
+INLINE VEC3 MS_KullaConty(REAL Ei, REAL Eo, REAL Eavg, VEC3 Fms) {
+    if (Eavg >= 1.0) return VEC3(0.0);  // single scattering keeps everything: nothing to return (and 0/0)
+    return Fms * ((1.0 - Ei) * (1.0 - Eo) * INV_PI / (1.0 - Eavg));
+}
+//@end
+
+//@block Fd_Coupled needs common
+// Coupled diffuse: the body gets what the specular lobe leaves, f = rho (1 - E_s(mu_i)) (1 - E_s(mu_o)) /
+// (pi (1 - E_s_avg)), E_s the specular albedo; its albedo is rho (1 - E_s(mu_i)). Kelemen & Szirmay-Kalos 2001;
+// Kulla & Conty 2017. E_s_avg < 1 in every channel (src/brdf/energy.cpp refuses the rest).
+INLINE VEC3 Fd_Coupled(VEC3 rho, VEC3 Esi, VEC3 Eso, VEC3 EsAvg) {
+    return rho * (VEC3(1.0) - Esi) * (VEC3(1.0) - Eso) * INV_PI / (VEC3(1.0) - EsAvg);
+}
+//@end
+
 //@block HalfVector
 // Half vector h = (wi + wo) / |wi + wo| and the scalars the terms take, computed once per direction pair.
 struct HalfVector { REAL NoH; REAL sin2h; REAL oneMinusNoH; REAL VoH; VEC3 h; bool valid; };

@@ -5,7 +5,8 @@
 
 // ---- Config ----
 // (injected after #version by the assembler: HILITE_OUTPUT_MEASURE or HILITE_OUTPUT_COLOR, and for the
-// spectral Fresnel HILITE_SPECTRAL_SAMPLES, the length of its uniform arrays, and HILITE_SPECTRAL_TABLE_SIZE)
+// spectral Fresnel HILITE_SPECTRAL_SAMPLES, the length of its uniform arrays, and HILITE_SPECTRAL_TABLE_SIZE;
+// for the energy terms HILITE_ENERGY_TABLE_SIZE)
 
 //@block prelude
 #define REAL float
@@ -178,5 +179,26 @@ vec3 F_SpectralTable(float cosTheta_i) {
     float x = sqrt(clamp(cosTheta_i, 0.0, 1.0)) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
     int i = min(int(x), HILITE_SPECTRAL_TABLE_SIZE - 2);
     return mix(uSpectralTable[i], uSpectralTable[i + 1], x - float(i));
+}
+//@end
+
+//@block EnergyE
+// Kulla-Conty's E(mu), the lobe's single-scattering albedo with F = 1, from a table at mu = (i / (N - 1))^2
+// integrated in double on the CPU (src/brdf/energy.hpp: energyE, its twin), linear in sqrt(mu) between entries.
+uniform float uEnergyE[HILITE_ENERGY_TABLE_SIZE];
+float energyE(float mu) {
+    float x = sqrt(clamp(mu, 0.0, 1.0)) * float(HILITE_ENERGY_TABLE_SIZE - 1);
+    int i = min(int(x), HILITE_ENERGY_TABLE_SIZE - 2);
+    return mix(uEnergyE[i], uEnergyE[i + 1], x - float(i));
+}
+//@end
+
+//@block EnergyEs
+// The coupled diffuse's E_s(mu), the specular albedo with the scene's Fresnel, as energyE (twin: energyEs).
+uniform vec3 uEnergyEs[HILITE_ENERGY_TABLE_SIZE];
+vec3 energyEs(float mu) {
+    float x = sqrt(clamp(mu, 0.0, 1.0)) * float(HILITE_ENERGY_TABLE_SIZE - 1);
+    int i = min(int(x), HILITE_ENERGY_TABLE_SIZE - 2);
+    return mix(uEnergyEs[i], uEnergyEs[i + 1], x - float(i));
 }
 //@end

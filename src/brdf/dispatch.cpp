@@ -1,5 +1,6 @@
 #include "brdf/dispatch.hpp"
 
+#include "brdf/energy.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
@@ -12,6 +13,11 @@
 namespace hilite::brdf {
 
 namespace {
+
+const EnergyTables& energy(const Params& p) {
+    if (!p.energy) throw std::logic_error("an energy term without its tables (Params::energy: brdf::energyTables)");
+    return *p.energy;
+}
 
 const NdfTable& table(const Params& p) {
     if (!p.ndfTable) throw std::logic_error("model tabulated without a table (Params::ndfTable)");
@@ -195,6 +201,26 @@ const std::vector<Keyed<Diffuse, DiffuseRow>> kDiffuses = {
       [](const Params& p, const dvec3& wi, const dvec3& wo) {
           return Fd_OrenNayar(p.albedo, deg2rad(p.sigmaDeg), wi.z, wo.z, glm::dot(wi, wo));
       }}},
+    {Diffuse::Coupled,
+     {"Fd_Coupled", {"EnergyEs"}, "Fd_Coupled(uAlbedo, energyEs(wi.z), energyEs(wo.z), uEnergyEsAvg)",
+      {"vec3 uAlbedo", "vec3 uEnergyEsAvg"},
+      [](const Params& p, const dvec3& wi, const dvec3& wo) {
+          const EnergyTables& t = energy(p);
+          return Fd_Coupled(p.albedo, energyEs(wi.z, t), energyEs(wo.z, t), t.EsAvg);
+      }}},
+};
+
+// ---- Multiple scattering ----
+const std::vector<Keyed<Multiscatter, MultiscatterRow>> kMultiscatters = {
+    {Multiscatter::None,
+     {"", {}, "vec3(0.0)", {}, [](const Params&, const dvec3&, const dvec3&) { return dvec3(0.0); }}},
+    {Multiscatter::KullaConty,
+     {"MS_KullaConty", {"EnergyE"}, "MS_KullaConty(energyE(wi.z), energyE(wo.z), uEnergyEavg, uEnergyFms)",
+      {"float uEnergyEavg", "vec3 uEnergyFms"},
+      [](const Params& p, const dvec3& wi, const dvec3& wo) {
+          const EnergyTables& t = energy(p);
+          return MS_KullaConty(energyE(wi.z, t), energyE(wo.z, t), t.Eavg, t.Fms);
+      }}},
 };
 
 }  // namespace
@@ -215,5 +241,6 @@ const FresnelRow& fresnelRow(const Params& p) {
 }
 const GeometryRow& geometryRow(Geometry g) { return find(kGeometries, g, "geometry"); }
 const DiffuseRow& diffuseRow(Diffuse d) { return find(kDiffuses, d, "diffuse"); }
+const MultiscatterRow& multiscatterRow(Multiscatter m) { return find(kMultiscatters, m, "multiple-scattering"); }
 
 }  // namespace hilite::brdf

@@ -38,6 +38,8 @@ using GeometryRow = TermRow<double (*)(const HalfVector& hv, const dvec3& wi, co
                                        double lambdaI, double lambdaO)>;
 /// The diffuse term from wi, wo.
 using DiffuseRow = TermRow<dvec3 (*)(const Params&, const dvec3& wi, const dvec3& wo)>;
+/// The multiple-scattering term from wi, wo (reads Params::energy).
+using MultiscatterRow = TermRow<dvec3 (*)(const Params&, const dvec3& wi, const dvec3& wo)>;
 
 /// Anisotropic roughness on a model that has an anisotropic form: the *Aniso rows and a tangent frame.
 bool anisotropicTerms(const Params& p);
@@ -54,5 +56,6 @@ const FresnelRow& fresnelRow(Fresnel f);
 const FresnelRow& fresnelRow(const Params& p);
 const GeometryRow& geometryRow(Geometry g);
 const DiffuseRow& diffuseRow(Diffuse d);
+const MultiscatterRow& multiscatterRow(Multiscatter m);
 
 }  // namespace hilite::brdf

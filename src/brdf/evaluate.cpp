@@ -54,8 +54,14 @@ dvec3 evaluateDiffuse(const Params& p, const dvec3& wi, const dvec3& wo) {
     return diffuseRow(p.diffuse).cpp(p, wi, wo);
 }
 
+dvec3 evaluateMultiscatter(const Params& p, const dvec3& wi, const dvec3& wo) {
+    if (p.multiscatter == Multiscatter::None) return dvec3(0.0);
+    if (wi.z <= 0.0 || wo.z <= 0.0) return dvec3(0.0);  // light or viewer below the horizon
+    return multiscatterRow(p.multiscatter).cpp(p, wi, wo);
+}
+
 dvec3 evaluate(const Params& p, const dvec3& wi, const dvec3& wo) {
-    return evaluateSpecular(p, wi, wo) + evaluateDiffuse(p, wi, wo);
+    return evaluateSpecular(p, wi, wo) + evaluateMultiscatter(p, wi, wo) + evaluateDiffuse(p, wi, wo);
 }
 
 dvec3 radiance(const Params& p, const dvec3& wi, const dvec3& wo, double irradiance) {

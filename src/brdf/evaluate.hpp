@@ -8,7 +8,7 @@
 
 namespace hilite::brdf {
 
-/// f(wi, wo) = specular + diffuse for unit directions in the local frame (n = +z). Zero when either is
+/// f(wi, wo) = specular + multiple scattering + diffuse for unit directions in the local frame (n = +z). Zero when either is
 /// below the horizon.
 dvec3 evaluate(const Params& p, const dvec3& wi, const dvec3& wo);
 /// The model's lobe with its Fresnel and geometry terms (0 for Model::None); a measured table's lookup when
@@ -16,6 +16,8 @@ dvec3 evaluate(const Params& p, const dvec3& wi, const dvec3& wo);
 dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo);
 /// The diffuse term (0 for Diffuse::None).
 dvec3 evaluateDiffuse(const Params& p, const dvec3& wi, const dvec3& wo);
+/// The multiple-scattering term (0 for Multiscatter::None; brdf/energy.hpp).
+dvec3 evaluateMultiscatter(const Params& p, const dvec3& wi, const dvec3& wo);
 
 /// Reflected radiance from a distant light of irradiance E (normal to the light): f(wi, wo) E cos(theta_i).
 dvec3 radiance(const Params& p, const dvec3& wi, const dvec3& wo, double irradiance);

@@ -2,6 +2,7 @@
 
 #include "brdf/merl.hpp"
 
+#include "brdf/energy.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/ndf_table.hpp"
 
@@ -257,6 +258,23 @@ dvec3 diffuseAlbedo(const Params& p, const dvec3& wi) {
     return sum;
 }
 
+/// The energy terms (multiple scattering, the coupled diffuse) depend on wo through mu_o = wo.z alone, so
+/// int f cos dwo = 2 pi int_0^1 f(mu_o) mu_o dmu_o = 2 pi int_0^1 f(u^2) 2 u^3 du, on panels between their
+/// tables' entries (brdf/energy.hpp: linear in u = sqrt(mu) there, so the panels are exact for them).
+template <class F>
+dvec3 energyAlbedo(const dvec3& wi, F&& f) {
+    dvec3 sum(0.0);
+    const double du = 1.0 / double(kEnergyTableSize - 1);
+    for (int i = 0; i + 1 < kEnergyTableSize; ++i)
+        sum += integratePanel(
+            [&](double u) {
+                const double mu = u * u;
+                return f(wi, dvec3(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu)) * (2.0 * u * mu);
+            },
+            i * du, (i + 1) * du);
+    return 2.0 * kPi * sum;
+}
+
 }  // namespace
 
 const GaussLegendre& gaussLegendre() {
@@ -306,7 +324,13 @@ double ndfIntegral(const Params& p) {
 dvec3 albedo(const Params& p, double thetaDeg, double phiDeg) {
     const dvec3 wi = sphericalDirectionDeg(thetaDeg, phiDeg);
     if (wi.z <= 0.0) return dvec3(0.0);  // light at or below the horizon: nothing is received
-    dvec3 rho = p.diffuse == Diffuse::None ? dvec3(0.0) : diffuseAlbedo(p, wi);
+    dvec3 rho = p.diffuse == Diffuse::None      ? dvec3(0.0)
+                : p.diffuse == Diffuse::Coupled ? energyAlbedo(wi, [&](const dvec3& a, const dvec3& b) {
+                                                      return evaluateDiffuse(p, a, b);
+                                                  })
+                                                : diffuseAlbedo(p, wi);
+    if (p.multiscatter != Multiscatter::None)
+        rho += energyAlbedo(wi, [&](const dvec3& a, const dvec3& b) { return evaluateMultiscatter(p, a, b); });
     if (isMicrofacet(p.model) || p.measured)  // a table over half/difference angles: integrated over h too
         rho += microfacetAlbedo(p, wi);
     else if (p.model == Model::Phong || p.model == Model::PhongClassic || p.model == Model::Retro)

@@ -30,7 +30,8 @@ constexpr Fresnel kFresnels[] = {Fresnel::None, Fresnel::Schlick, Fresnel::Diele
                                  Fresnel::Spectral};
 constexpr Geometry kGeometries[] = {Geometry::None, Geometry::Implicit, Geometry::CookTorrance,
                                     Geometry::SmithSeparable, Geometry::Smith};
-constexpr Diffuse kDiffuses[] = {Diffuse::None, Diffuse::Lambert, Diffuse::OrenNayar};
+constexpr Diffuse kDiffuses[] = {Diffuse::None, Diffuse::Lambert, Diffuse::OrenNayar, Diffuse::Coupled};
+constexpr Multiscatter kMultiscatters[] = {Multiscatter::None, Multiscatter::KullaConty};
 
 void printRgb(std::ostream& os, const char* name, const dvec3& v) {
     os << " " << name << "=" << v.x;
@@ -78,6 +79,14 @@ const char* toString(Diffuse d) {
         case Diffuse::None: return "none";
         case Diffuse::Lambert: return "lambert";
         case Diffuse::OrenNayar: return "oren-nayar";
+        case Diffuse::Coupled: return "coupled";
+    }
+    return "?";
+}
+const char* toString(Multiscatter m) {
+    switch (m) {
+        case Multiscatter::None: return "none";
+        case Multiscatter::KullaConty: return "kulla-conty";
     }
     return "?";
 }
@@ -86,10 +95,12 @@ std::optional<Model> parseModel(const std::string& s) { return parseEnum(s, kMod
 std::optional<Fresnel> parseFresnel(const std::string& s) { return parseEnum(s, kFresnels); }
 std::optional<Geometry> parseGeometry(const std::string& s) { return parseEnum(s, kGeometries); }
 std::optional<Diffuse> parseDiffuse(const std::string& s) { return parseEnum(s, kDiffuses); }
+std::optional<Multiscatter> parseMultiscatter(const std::string& s) { return parseEnum(s, kMultiscatters); }
 std::vector<std::string> modelNames() { return names(kModels); }
 std::vector<std::string> fresnelNames() { return names(kFresnels); }
 std::vector<std::string> geometryNames() { return names(kGeometries); }
 std::vector<std::string> diffuseNames() { return names(kDiffuses); }
+std::vector<std::string> multiscatterNames() { return names(kMultiscatters); }
 
 bool isMicrofacet(Model m) {
     return m == Model::Blinn || m == Model::Beckmann || m == Model::GGX || m == Model::Gaussian ||
@@ -108,6 +119,7 @@ std::ostream& operator<<(std::ostream& os, Model m) { return os << toString(m); 
 std::ostream& operator<<(std::ostream& os, Fresnel f) { return os << toString(f); }
 std::ostream& operator<<(std::ostream& os, Geometry g) { return os << toString(g); }
 std::ostream& operator<<(std::ostream& os, Diffuse d) { return os << toString(d); }
+std::ostream& operator<<(std::ostream& os, Multiscatter m) { return os << toString(m); }
 
 std::ostream& operator<<(std::ostream& os, const Params& p) {
     if (p.measured) return os << "measured=" << p.measured->path << " (MERL table, multilinear; no_data_bins=" << p.measured->noData << ")";
@@ -130,6 +142,7 @@ std::ostream& operator<<(std::ostream& os, const Params& p) {
             os << " material=" << p.spectrum->name << " wavelengths=" << p.spectrum->size()
                << (p.spectralTable ? " table" : " exact");
         os << " geometry=" << toString(p.geometry);
+        if (p.multiscatter != Multiscatter::None) os << " multiscatter=" << toString(p.multiscatter);
     }
     if (p.diffuse != Diffuse::None) {
         os << " diffuse=" << toString(p.diffuse);

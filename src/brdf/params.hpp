@@ -15,6 +15,7 @@ namespace hilite::brdf {
 
 struct Spectrum;  // brdf/spectral.hpp
 struct NdfTable;  // brdf/ndf_table.hpp
+struct EnergyTables;  // brdf/energy.hpp
 namespace merl {
 struct MeasuredBrdf;  // brdf/merl.hpp
 }
@@ -49,20 +50,29 @@ enum class Diffuse {
     None,       ///< no diffuse term
     Lambert,    ///< rho / pi
     OrenNayar,  ///< Oren-Nayar qualitative rough diffuse, facet slope deviation sigma
+    Coupled,    ///< rho (1 - E_s(mu_i)) (1 - E_s(mu_o)) / (pi (1 - E_s_avg)): what the specular albedo E_s leaves
+};
+/// Energy the single-scattering microfacet lobe loses to masking (light that bounces more than once).
+enum class Multiscatter {
+    None,        ///< single scattering only
+    KullaConty,  ///< Kulla & Conty 2017: (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)) F_ms (brdf/energy.hpp)
 };
 
 const char* toString(Model);
 const char* toString(Fresnel);
 const char* toString(Geometry);
 const char* toString(Diffuse);
+const char* toString(Multiscatter);
 std::optional<Model> parseModel(const std::string&);
 std::optional<Fresnel> parseFresnel(const std::string&);
 std::optional<Geometry> parseGeometry(const std::string&);
 std::optional<Diffuse> parseDiffuse(const std::string&);
+std::optional<Multiscatter> parseMultiscatter(const std::string&);
 std::vector<std::string> modelNames();
 std::vector<std::string> fresnelNames();
 std::vector<std::string> geometryNames();
 std::vector<std::string> diffuseNames();
+std::vector<std::string> multiscatterNames();
 
 bool isMicrofacet(Model m);
 bool usesExponent(Model m);      ///< phong, phong-classic, blinn, retro take an exponent; beckmann, ggx, gaussian a roughness
@@ -92,6 +102,10 @@ struct Params {
     Diffuse diffuse = Diffuse::None;
     dvec3 albedo{0.5, 0.5, 0.5};  ///< lambert / oren-nayar rho
     double sigmaDeg = 20.0;       ///< oren-nayar facet slope standard deviation, degrees
+    Multiscatter multiscatter = Multiscatter::None;
+    /// kulla-conty, coupled: the directional albedo tables of this BRDF (brdf::energyTables(p), made by
+    /// scene::resolve); they belong to the parameters they were made for, so set them again after a change.
+    std::shared_ptr<const EnergyTables> energy;
 
     bool anisotropic() const { return roughnessY.has_value(); }
     double alphaX() const { return roughness; }
@@ -107,6 +121,7 @@ std::ostream& operator<<(std::ostream&, Model);
 std::ostream& operator<<(std::ostream&, Fresnel);
 std::ostream& operator<<(std::ostream&, Geometry);
 std::ostream& operator<<(std::ostream&, Diffuse);
+std::ostream& operator<<(std::ostream&, Multiscatter);
 
 /// Allowed ranges, checked at the CLI boundary (the error names the flag and the range).
 constexpr double kMinExponent = 0.0, kMaxExponent = 1e8;

@@ -94,6 +94,7 @@ void ExperimentRunner::applyMatch(scene::Values& values, nlohmann::json& row) {
         throw InputError(m_exp.path + ": [match]: matching widths sets a model's width, and " +
                          r.values.text("measured") + " (a measured table) has none");
     r.scene.light.incidenceDeg = 0;
+    scene::dropEnergyTerms(r.scene.brdf);  // the bisection sets the width directly (scene/resolve.hpp)
     const std::string key = brdf::toString(r.scene.brdf.model);
     const bool exponent = brdf::usesExponent(r.scene.brdf.model);
     auto it = m_matched.find(key);

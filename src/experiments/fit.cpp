@@ -253,6 +253,7 @@ double startingWidth(const scene::Values& common, const Space& s, const FitOptio
     scene::Values v = modelValues(common, s, o, x);
     v.set("incidence", exactText(target->incidence));
     scene::Resolved res = scene::resolve(v);
+    scene::dropEnergyTerms(res.scene.brdf);  // the search sets the roughness directly (scene/resolve.hpp)
     double lo = s.lo, hi = s.hi;
     const bool exponent = brdf::usesExponent(s.model);
     for (int i = 0; i < 60; ++i) {

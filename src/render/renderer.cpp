@@ -1,5 +1,6 @@
 #include "render/renderer.hpp"
 
+#include "brdf/energy.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
@@ -70,6 +71,7 @@ std::vector<std::string> activeEffects(const Scene& scene) {
           << "analytic lobe, Fresnel, geometry or diffuse term";
         out.insert(out.begin(), s.str());
     }
+    if (scene.brdf.energy) out.push_back(brdf::describeEnergy(scene.brdf));  // the albedo tables behind the terms
     if (scene.brdf.model == brdf::Model::Tabulated && scene.brdf.ndfTable) {  // What the table became
         const brdf::NdfTable& t = *scene.brdf.ndfTable;
         std::ostringstream s;

@@ -1,6 +1,7 @@
 #include "render/shader_source.hpp"
 
 #include "brdf/dispatch.hpp"
+#include "brdf/energy.hpp"
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
@@ -14,6 +15,7 @@
 #include <functional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #ifndef HILITE_INSTALL_SHADER_DIR
 #define HILITE_INSTALL_SHADER_DIR "/usr/local/share/hilite/shaders"
@@ -132,6 +134,7 @@ struct Rows {
     const brdf::FresnelRow* fresnel = nullptr;
     const brdf::GeometryRow* geometry = nullptr;
     const brdf::DiffuseRow* diffuse = nullptr;
+    const brdf::MultiscatterRow* multiscatter = nullptr;
 
     explicit Rows(const brdf::Params& p) {
         if (p.model != Model::None && !brdf::isMicrofacet(p.model)) lobe = &brdf::lobeRow(p.model);
@@ -140,6 +143,7 @@ struct Rows {
             if (brdf::usesSmith(p)) lambda = &brdf::lambdaRow(p);
             if (p.fresnel != Fresnel::None) fresnel = &brdf::fresnelRow(p);
             geometry = &brdf::geometryRow(p.geometry);
+            if (p.multiscatter != brdf::Multiscatter::None) multiscatter = &brdf::multiscatterRow(p.multiscatter);
         }
         if (p.diffuse != Diffuse::None) diffuse = &brdf::diffuseRow(p.diffuse);
     }
@@ -151,6 +155,7 @@ struct Rows {
         if (fresnel) f(*fresnel);
         if (lambda) f(*lambda);
         if (geometry) f(*geometry);
+        if (multiscatter) f(*multiscatter);
         if (diffuse) f(*diffuse);
     }
 };
@@ -216,14 +221,16 @@ std::string dispatchSource(const brdf::Params& p) {
           << ");\n}\n";
     else if (rows.distribution)
         microfacetDispatch(s, p, rows);
+    if (rows.multiscatter)
+        s << "vec3 multiscatter(vec3 wi, vec3 wo) { return " << rows.multiscatter->glsl << "; }\n";
     if (rows.diffuse) s << "vec3 diffuse(vec3 wi, vec3 wo) { return " << rows.diffuse->glsl << "; }\n";
-    const bool specular = rows.lobe || rows.distribution, diffuse = rows.diffuse;
-    s << "vec3 brdf(vec3 wi, vec3 wo) { return "
-      << (specular && diffuse ? "specular(wi, wo) + diffuse(wi, wo)"
-          : specular          ? "specular(wi, wo)"
-          : diffuse           ? "diffuse(wi, wo)"
-                              : "vec3(0.0)")
-      << "; }\n";
+    std::vector<std::string> parts;  // the terms present, summed in the order evaluate() sums them
+    if (rows.lobe || rows.distribution) parts.push_back("specular(wi, wo)");
+    if (rows.multiscatter) parts.push_back("multiscatter(wi, wo)");
+    if (rows.diffuse) parts.push_back("diffuse(wi, wo)");
+    std::string sum;
+    for (const auto& part : parts) sum += (sum.empty() ? "" : " + ") + part;
+    s << "vec3 brdf(vec3 wi, vec3 wo) { return " << (sum.empty() ? "vec3(0.0)" : sum) << "; }\n";
     return s.str();
 }
 
@@ -263,6 +270,22 @@ std::vector<TermUniform> termUniforms(const brdf::Params& p) {
     }
     u.push_back({"uAlbedo", 3, rgb(p.albedo)});
     u.push_back({"uSigma", 1, {float(deg2rad(p.sigmaDeg))}});
+    if (p.energy) {  // the energy terms' tables (brdf/energy.hpp)
+        const brdf::EnergyTables& t = *p.energy;
+        if (!t.E.empty()) {
+            TermUniform e{"uEnergyE", 1, {}};
+            for (double v : t.E) e.values.push_back(float(v));
+            u.push_back(e);
+            u.push_back({"uEnergyEavg", 1, {float(t.Eavg)}});
+            u.push_back({"uEnergyFms", 3, rgb(t.Fms)});
+        }
+        if (!t.Es.empty()) {
+            TermUniform es{"uEnergyEs", 3, {}};
+            for (const dvec3& v : t.Es) es.values.insert(es.values.end(), {float(v.x), float(v.y), float(v.z)});
+            u.push_back(es);
+            u.push_back({"uEnergyEsAvg", 3, rgb(t.EsAvg)});
+        }
+    }
     return u;
 }
 
@@ -333,6 +356,10 @@ ProgramSources assemble(const brdf::Params& p, Output out, const std::string& di
         config += "#define HILITE_SPECTRAL_SAMPLES " + std::to_string(n) + "\n#define HILITE_SPECTRAL_TABLE_SIZE " +
                   std::to_string(brdf::kFresnelTableSize) + "\n";
     if (const size_t n = ndfTableRows(p)) config += "#define HILITE_NDF_TABLE_ROWS " + std::to_string(n) + "\n";
+    if ((brdf::isMicrofacet(p.model) && p.multiscatter != brdf::Multiscatter::None) || p.diffuse == Diffuse::Coupled) {
+        if (!p.energy) throw std::logic_error("an energy term without its tables (Params::energy: brdf::energyTables)");
+        config += "#define HILITE_ENERGY_TABLE_SIZE " + std::to_string(brdf::kEnergyTableSize) + "\n";
+    }
     src.fragment.push_back({"<generated config>", 1, config});
     for (const ShaderBlock* b : ordered) src.fragment.push_back({b->file, b->firstLine, b->text});
     src.fragment.push_back({"<generated dispatch>", 1, dispatchSource(p)});

@@ -115,11 +115,21 @@ std::vector<Param> build() {
          "(height-correlated)",
          "microfacet models", microfacet, "geometry",
          [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.geometry); }});
+    add({"multiscatter", T::Material, K::Choice, "none", 0, 0, false, false, brdf::multiscatterNames(), "",
+         "none (single scattering) | kulla-conty (Kulla & Conty 2017: the energy Smith masking takes from single "
+         "scattering, 1 - E(mu), returned as (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)) times F_avg^2 E_avg / (1 - "
+         "F_avg (1 - E_avg)); E integrated by hilite at 64 angles; isotropic microfacet models, --geometry smith or "
+         "smith-separable)",
+         "microfacet models", microfacet, "multiscatter",
+         [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.multiscatter); }});
     add({"diffuse", T::Material, K::Choice, "none", 0, 0, false, false, brdf::diffuseNames(), "",
-         "none | lambert | oren-nayar, added to the specular lobe", "built-in models", builtin, "diffuse",
+         "none | lambert | oren-nayar, added to the specular lobe | coupled (rho (1 - E_s(mu_i)) (1 - E_s(mu_o)) / (pi "
+         "(1 - E_s_avg)), E_s the specular albedo: the body takes what the surface leaves, specular + diffuse "
+         "albedo <= 1)",
+         "built-in models", builtin, "diffuse",
          [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.diffuse); }});
     add({"albedo", T::Material, K::Rgb, "0.5", 0, 1, false, false, {}, "", "diffuse albedo rho",
-         "diffuse lambert, oren-nayar", diffuse, "albedo",
+         "diffuse lambert, oren-nayar, coupled", diffuse, "albedo",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.albedo); }});
     add({"sigma", T::Material, K::Number, "20", brdf::kMinSigmaDeg, brdf::kMaxSigmaDeg, false, false, {}, "deg",
          "oren-nayar facet slope deviation", "diffuse oren-nayar", orenNayar, "sigma",

@@ -1,5 +1,6 @@
 #include "scene/resolve.hpp"
 
+#include "brdf/energy.hpp"
 #include "brdf/materials.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
@@ -15,6 +16,7 @@
 #include <iostream>
 #include <ostream>
 #include <set>
+#include <stdexcept>
 
 namespace hilite::scene {
 
@@ -233,6 +235,17 @@ brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) 
         p.diffuse = brdf::Diffuse::None;
         p.roughnessY.reset();
     }
+    p.multiscatter = *brdf::parseMultiscatter(in.text("multiscatter"));
+    const bool ms = p.multiscatter != brdf::Multiscatter::None, coupled = p.diffuse == brdf::Diffuse::Coupled;
+    if (ms || coupled) {  // the albedo tables of the energy terms, integrated (and cached) here
+        const std::string w = ms ? in.where("multiscatter") + " " + in.text("multiscatter")
+                                 : in.where("diffuse") + " coupled";
+        try {
+            p.energy = brdf::energyTables(p);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(w + ": " + e.what());
+        }
+    }
     return p;
 }
 
@@ -265,6 +278,8 @@ void checkScene(const Reader& in, const render::Scene& s) {
                              "BRDF() has none (drop --brdf or --bumps)");
     render::bumpSpec(s);  // the material must have a slope distribution (InputError naming --bumps)
     if (s.brdf.diffuse != brdf::Diffuse::None) throw InputError(w + ": the bump render is specular only (drop --diffuse)");
+    if (s.brdf.multiscatter != brdf::Multiscatter::None)
+        throw InputError(w + ": the bump render's facets are mirrors lit once (drop --multiscatter)");
     if (s.surface.filter == render::BumpFilter::Moments && s.brdf.model != brdf::Model::Beckmann)
         throw InputError(in.where("bump_filter") +
                          " moments: the prefilter's Gaussian is the slope distribution of beckmann bumps only (ggx "
@@ -397,6 +412,12 @@ brdf::Params resolveFresnel(Values v, bool spectral) {
     if (p.fresnel == brdf::Fresnel::None)
         throw InputError(v.where("fresnel") + ": give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
     return p;
+}
+
+void dropEnergyTerms(brdf::Params& p) {
+    p.multiscatter = brdf::Multiscatter::None;
+    if (p.diffuse == brdf::Diffuse::Coupled) p.diffuse = brdf::Diffuse::None;
+    p.energy.reset();
 }
 
 PinholeCamera viewCamera(const Resolved& r, View view, int width, int height) {

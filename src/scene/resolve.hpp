@@ -77,6 +77,12 @@ Resolved resolve(const Values& values, Purpose purpose = Purpose::Measure);
 /// be one (a material or a --fresnel other than none). InputError naming the flag otherwise.
 brdf::Params resolveFresnel(Values values, bool spectral);
 
+/// Switches the energy terms (--multiscatter, --diffuse coupled) off, for a search that sets the lobe's
+/// roughness or exponent directly: their tables belong to the parameters they were integrated for, and their
+/// broad lobes do not set the highlight's width, so the search matches the lobe alone (the value found then
+/// resolves with its own tables).
+void dropEnergyTerms(brdf::Params& p);
+
 /// The camera of the resolved view at the scene's incidence.
 PinholeCamera viewCamera(const Resolved& r, View view, int width, int height);
 /// The GL backend named by `name` (--gl-backend: "" = $HILITE_GL_BACKEND, else auto); InputError if unknown.

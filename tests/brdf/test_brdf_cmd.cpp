@@ -61,6 +61,24 @@ TEST_CASE("cli::brdf albedo --json: theta_deg and albedo per line") {
     CHECK(table.out.find("# bihemispherical albedo") != std::string::npos);
 }
 
+TEST_CASE("cli::brdf albedo --multiscatter kulla-conty: the white furnace, single scattering beside it") {
+    const auto single = jsonLines(hilite("brdf albedo --roughness 1 --geometry smith --incidence 0,60 --json").out);
+    const auto ms =
+        jsonLines(hilite("brdf albedo --roughness 1 --geometry smith --multiscatter kulla-conty --incidence 0,60 --json").out);
+    REQUIRE(single.size() == 2);
+    REQUIRE(ms.size() == 2);
+    CHECK(single[0]["albedo"][0].get<double>() == doctest::Approx(0.3068528).epsilon(1e-6));  // 1 - ln 2
+    for (const auto& line : ms) CHECK(std::abs(line["albedo"][1].get<double>() - 1.0) < 1e-3);
+    const auto explain = hilite("explain --roughness 1 --geometry smith --multiscatter kulla-conty --part effects");
+    CHECK(explain.code == 0);
+    CHECK(explain.out.find("MS_KullaConty") != std::string::npos);
+    CHECK(explain.out.find("Kulla & Conty 2017") != std::string::npos);
+    const auto plain = hilite("explain --roughness 1 --geometry smith --part effects");
+    CHECK(plain.out.find("KullaConty") == std::string::npos);
+    const auto coupled = hilite("explain --fresnel dielectric --geometry smith --diffuse coupled --part effects");
+    CHECK(coupled.out.find("Fd_Coupled") != std::string::npos);
+}
+
 TEST_CASE("cli::brdf normalization --json: roughness, exponent, integral per line") {
     const auto r = hilite("brdf normalization --model ggx --roughness 0.02,1 --json");
     REQUIRE(r.code == 0);
@@ -112,6 +130,11 @@ TEST_CASE("cli::brdf bad input: one line naming the flag, exit 2") {
                          Case{"albedo --albedo 1.5", "--albedo"},
                          Case{"albedo --sigma 100", "--sigma"},
                          Case{"albedo --geometry ct", "--geometry"},
+                         Case{"albedo --multiscatter heitz", "--multiscatter"},
+                         Case{"albedo --multiscatter kulla-conty", "--multiscatter"},  // implicit G: not Smith's loss
+                         Case{"albedo --multiscatter kulla-conty --geometry smith --roughness-y 0.3", "--multiscatter"},
+                         Case{"albedo --model phong --multiscatter kulla-conty --geometry smith", "--multiscatter"},
+                         Case{"albedo --diffuse coupled --geometry none", "--diffuse"},
                          Case{"normalization --model phong", "--model"},
                          Case{"normalization --roughness 0.1,-2", "--roughness"},
                          Case{"normalization --model blinn --exponent nan", "--exponent"},

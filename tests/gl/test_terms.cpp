@@ -2,6 +2,7 @@
 // relative: every new NDF, Fresnel, geometry and diffuse term and the classic Phong lobe, each in a
 // program assembled with only the blocks it runs.
 
+#include "brdf/energy.hpp"
 #include "brdf/ndf_tables.hpp"
 #include "brdf/spectral.hpp"
 #include "gl_fixture.hpp"
@@ -66,6 +67,14 @@ brdf::Params withDiffuse(brdf::Params p, Diffuse d) {
     return p;
 }
 
+/// An energy term switched on, with its tables (brdf/energy.hpp).
+brdf::Params withEnergy(brdf::Params p, brdf::Multiscatter ms, Diffuse d = Diffuse::None) {
+    p.multiscatter = ms;
+    if (d != Diffuse::None) p = withDiffuse(p, d);
+    p.energy = brdf::energyTables(p);
+    return p;
+}
+
 std::vector<TermCase> termCases() {
     const dvec3 silverEta{0.140, 0.124, 0.151}, silverK{4.150, 3.348, 2.479};
     return {
@@ -103,6 +112,21 @@ std::vector<TermCase> termCases() {
         {"D_Tabulated", tabulated(Geometry::Implicit)},  // A GGX table (tests/gl/test_ndf_table.cpp)
         {"D_Tabulated + Lambda_Tabulated + F_Schlick",
          withFresnel(tabulated(Geometry::Smith), Fresnel::Schlick, dvec3(1.5))},
+        {"MS_KullaConty (GGX, conductor)",
+         withEnergy(withFresnel(base(Model::GGX, Geometry::Smith), Fresnel::Conductor, silverEta, silverK),
+                    brdf::Multiscatter::KullaConty)},
+        {"MS_KullaConty (beckmann, F = 1, separable)",
+         [] {
+             brdf::Params p = base(Model::Beckmann, Geometry::SmithSeparable);
+             p.roughness = 0.6;
+             return withEnergy(p, brdf::Multiscatter::KullaConty);
+         }()},
+        {"Fd_Coupled (GGX dielectric)",
+         withEnergy(withFresnel(base(Model::GGX, Geometry::Smith), Fresnel::Dielectric, dvec3(1.5)),
+                    brdf::Multiscatter::None, Diffuse::Coupled)},
+        {"Fd_Coupled + MS_KullaConty (copper)",
+         withEnergy(withFresnel(base(Model::GGX, Geometry::Smith), Fresnel::Spectral, dvec3(1.0)),
+                    brdf::Multiscatter::KullaConty, Diffuse::Coupled)},
     };
 }
 
@@ -149,7 +173,7 @@ TEST_CASE("render::assemble a program holds exactly the terms it runs") {
         "F_Conductor(",          "F_Spectral(",         "Lambda_GGX(",        "Lambda_Beckmann(", "Lambda_GGXAniso(",
         "Lambda_BeckmannAniso(", "G2_SmithCorrelated(", "G2_SmithSeparable(", "G_CookTorrance(",  "Fd_Lambert(",
         "Fd_OrenNayar(",         "Retro_Normalized(",   "D_Tabulated(",       "Lambda_Tabulated(",
-        "F_SpectralTable("};
+        "F_SpectralTable(",      "MS_KullaConty(",      "Fd_Coupled("};
     for (const TermCase& t : termCases()) {
         const std::string text = fragment(t.p);
         const auto blocks = render::termBlocks(t.p);
@@ -168,6 +192,11 @@ TEST_CASE("render::assemble a program holds exactly the terms it runs") {
     const std::string text = fragment(none);
     CHECK(text.find("fresnel") == std::string::npos);
     CHECK(text.find("F_") == std::string::npos);
+    // Without the energy terms the program holds none of their text: it is the program it was before them.
+    for (const char* word : {"multiscatter", "energyE", "HILITE_ENERGY", "Fd_Coupled"}) {
+        CAPTURE(word);
+        CHECK(text.find(word) == std::string::npos);
+    }
 }
 
 TEST_CASE("render::termUniforms and the program cache: one program per effect set") {
