@@ -59,7 +59,7 @@ struct Line {
 
 class Scanner {
 public:
-    Scanner(const LobeFunction& f, double T, dvec2 p, std::vector<ChartBox> boxes) : m_f(f), m_T(T), m_p(p), m_boxes(std::move(boxes)) {}
+    Scanner(const LobeFunction& f, double T, std::vector<ChartBox> boxes) : m_f(f), m_T(T), m_boxes(std::move(boxes)) {}
 
     bool visible(double u, double v) const { return inChart(u, v) && m_f.visible(u, v); }
     bool in(double u, double v) const { return visible(u, v) && m_f.lobe(u, v) >= m_T; }
@@ -205,7 +205,6 @@ private:
 
     const LobeFunction& m_f;
     double m_T;
-    dvec2 m_p;
     std::vector<ChartBox> m_boxes;
     bool m_grew = false;
     std::map<double, std::vector<Interval>> m_done;  ///< every line cut so far, by v
@@ -380,7 +379,7 @@ Shape measureLines(const LobeFunction& f, const Options& opt, double peak, doubl
         return s;
     }
     const dvec2 p(peak_u, peak_v);
-    Scanner scanner(f, opt.threshold * peak, p, std::move(boxes));
+    Scanner scanner(f, opt.threshold * peak, std::move(boxes));
     std::vector<Line> lines;
     bool exhausted = false;
     for (int g = 0;; ++g) {

@@ -81,7 +81,9 @@ TEST_CASE("terms: the single-source C++ terms equal the two-source twins bit for
     TermDraws draws;
     draws.run(100000);
     CHECK(draws.hash.size() == recorded.size());
-    for (const auto& [term, hash] : recorded) {
+    for (const auto& entry : recorded) {
+        const auto& term = entry.first;  // not a structured binding: doctest's CAPTURE lambda takes it (C++17)
+        const auto& hash = entry.second;
         CAPTURE(term);
         REQUIRE(draws.hash.count(term) == 1);
         CHECK(draws.hash.at(term) == hash);

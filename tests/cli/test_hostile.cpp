@@ -548,7 +548,9 @@ TEST_CASE("cli::hostile damaged rows on --resume and merge: file:line, exit 2, n
         {rows[0] + "\n" + rows[0] + "\n", "configuration 0 appears twice"},
         {"\n", "results.jsonl:1: damaged row"},
     };
-    for (const auto& [text, needle] : damage) {
+    for (const auto& entry : damage) {
+        const auto& text = entry.first;
+        const auto& needle = entry.second;  // not a structured binding: CAPTURE's lambda takes it (C++17)
         CAPTURE(needle);
         std::ofstream(d / "r/results.jsonl", std::ios::trunc) << text;
         const Result r = hilite("run " + (d / "tiny.toml") + " -o " + (d / "r") + " --resume");

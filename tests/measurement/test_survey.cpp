@@ -16,7 +16,8 @@ const char* kSweep = "model=ggx roughness=0.1 geometry=smith fresnel=schlick f0=
 }  // namespace
 
 TEST_CASE("survey: GGX 0.1 + Smith + Schlick 0.04 has a second part above the horizon at 58-64 deg, one part at 45 and 65") {
-    for (auto [ti, parts] : {std::pair{45.0, 1}, {58.0, 2}, {60.0, 2}, {64.0, 2}, {65.0, 1}}) {
+    for (auto [t, parts] : {std::pair{45.0, 1}, {58.0, 2}, {60.0, 2}, {64.0, 2}, {65.0, 1}}) {
+        const double ti = t;  // a structured binding cannot be captured by CAPTURE's lambda in C++17 (clang)
         CAPTURE(ti);
         const auto r = test::resolveKeys(kSweep + std::to_string(ti));
         const measurement::LobeSurvey s = measurement::surveyLobe(r.scene, 0.5);

@@ -123,7 +123,9 @@ TEST_CASE("scene::sceneToml writes a file that reads back as the same values") {
     CHECK(text.find("reference = true") != std::string::npos);
     CHECK(text.find("incidence = '0:85:5'") != std::string::npos);
     const scene::Values back = scene::parseSceneToml(text, "back.toml");
-    for (const auto& [name, value] : v.given()) {  // the same text, or the same number (1e-3 reads back as 0.001)
+    for (const auto& given : v.given()) {  // the same text, or the same number (1e-3 reads back as 0.001)
+        const auto& name = given.first;
+        const auto& value = given.second;
         const auto a = parseNumber(back.text(name)), b = parseNumber(value.text);
         CHECK_MESSAGE((a && b ? *a == *b : back.text(name) == value.text), name);
     }
