@@ -12,10 +12,22 @@ uniform vec2 uViewport;   // width, height in pixels
 uniform vec2 uJitter;     // sample offset from the pixel centre, in pixels (supersampling; 0 = centre)
 uniform vec3 uWi;         // towards the light (unit)
 uniform float uIrradiance;
-#if defined(HILITE_LIGHT_POINT)
-uniform vec3 uLightPos;   // point light position, intensity I
+#if defined(HILITE_LIGHT_POINT) || defined(HILITE_LIGHT_SPHERE)
+uniform vec3 uLightPos;   // point light position (sphere: its centre), intensity I
 uniform float uIntensity;
 uniform vec3 uCamPos;     // the eye
+#endif
+#if defined(HILITE_LIGHT_SPHERE) || defined(HILITE_LIGHT_DISK)
+#define HILITE_LIGHT_AREA 1
+uniform int uRings;          // the rule: n Gauss-Legendre nodes in u = 1 - cos(beta) x 4n azimuths
+uniform float uRingX[32];    // nodes in (0, 1) and weights (summing to 1), render::ringRule
+uniform float uRingW[32];
+uniform float uCapRadiance;  // L: sphere I / (pi R^2), disk E / (pi sin^2 delta)
+#if defined(HILITE_LIGHT_SPHERE)
+uniform float uLightRadius;  // R
+#else
+uniform float uCapHalfAngle; // delta (rad)
+#endif
 #endif
 uniform vec3 uWr;         // chart: mirror direction, +u (towards the normal), +v
 uniform vec3 uEu;
@@ -37,12 +49,49 @@ vec2 chartCoords(vec3 we, out float rhoOverSin) {
     return vec2(a, b) * rhoOverSin;
 }
 
+#if defined(HILITE_LIGHT_AREA)
+// int_cap f(wi, we) L cos(theta_i) dwi over a cap of directions (centre c, angular radius halfAngle) by the rule
+// of uRings rings x 4 uRings azimuths, each ray cut at the horizon. Twin: render::capRule (render/area_light.cpp).
+vec3 capRadiance(vec3 c, float halfAngle, vec3 we) {
+    float s = length(c.xy);  // tangent frame: a points down toward the horizon, b is horizontal
+    vec3 a = s > 0.0 ? vec3(c.x * c.z / s, c.y * c.z / s, -s) : vec3(1.0, 0.0, 0.0);
+    vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
+    int m = 4 * uRings;
+    vec3 sum = vec3(0.0);
+    for (int j = 0; j < m; ++j) {
+        float phi = 6.283185307 * (float(j) + 0.5) / float(m);
+        float cp = cos(phi), sp = sin(phi);
+        // wi.z = c.z cos(beta) + cp a.z sin(beta) > 0 up to atan(cp a.z, c.z) + pi/2 (render::capEdge).
+        float beta = clamp(atan(cp * a.z, c.z) + 1.570796327, 0.0, halfAngle);
+        float sh = sin(0.5 * beta);
+        float uMax = 2.0 * sh * sh;  // 1 - cos(beta) without cancellation
+        vec3 d = cp * a + sp * b;
+        for (int i = 0; i < uRings; ++i) {
+            float u = uMax * uRingX[i];
+            vec3 wi = (1.0 - u) * c + sqrt(u * (2.0 - u)) * d;
+            if (wi.z > 0.0) sum += (uRingW[i] * uMax * wi.z) * brdf(wi, we);
+        }
+    }
+    return sum * (uCapRadiance * 6.283185307 / float(m));
+}
+#endif
+
 void main() {
     vec2 xy = (2.0 * (gl_FragCoord.xy + uJitter) / uViewport - 1.0) * uTanHalf;
     vec3 d = -uCamBack + xy.x * uCamRight + xy.y * uCamUp;
     float len = sqrt(dot(d, d));
     vec3 we = -d / len;  // exitant direction: from the surface towards the eye
-#if defined(HILITE_LIGHT_POINT)
+#if defined(HILITE_LIGHT_SPHERE)
+    // Sphere: its cap seen from the point this pixel sees (sin(alpha) = R / d); nothing of it below the horizon.
+    vec3 P = uCamPos - (uCamPos.z / we.z) * we;
+    vec3 toLight = uLightPos - P;
+    float dist = length(toLight);
+    vec3 wi = toLight / dist;
+    float capHalfAngle = asin(min(1.0, uLightRadius / dist));
+#elif defined(HILITE_LIGHT_DISK)
+    vec3 wi = uWi;  // the disk's centre; part of it may lie below the horizon (capRadiance cuts each ray)
+    float capHalfAngle = uCapHalfAngle;
+#elif defined(HILITE_LIGHT_POINT)
     // Point light: wi and the irradiance I cos(theta_i) / d^2 belong to the point this pixel sees.
     vec3 P = uCamPos - (uCamPos.z / we.z) * we;
     vec3 toLight = uLightPos - P;
@@ -53,11 +102,17 @@ void main() {
     vec3 wi = uWi;
     float E = uIrradiance;
 #endif
+#if defined(HILITE_LIGHT_AREA)
+    if (we.z <= 0.0) {  // the light's cap may straddle the horizon: only the eye's side is checked here
+#else
     if (we.z <= 0.0 || wi.z <= 0.0) {  // grazing or below: no surface radiance reaches this pixel
+#endif
         fragColor = vec4(0.0);
         return;
     }
-#if defined(HILITE_BUMPS)
+#if defined(HILITE_LIGHT_AREA)
+    vec3 rad = capRadiance(wi, capHalfAngle, we);
+#elif defined(HILITE_BUMPS)
     // Explicit micro-geometry: mirror facets of the bump field under a soft sun (shaders/micro.glsl).
     vec3 rad = bumpRadiance(gl_FragCoord.xy, wi, E, uCamBack, uCamRight, uCamUp, uTanHalf, uViewport);
 #else

@@ -5,6 +5,7 @@
 #include "brdf/energy.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/ndf_table.hpp"
+#include "core/quadrature.hpp"
 
 #include <cmath>
 #include <limits>
@@ -15,26 +16,11 @@ namespace hilite::brdf {
 namespace {
 
 GaussLegendre makeGaussLegendre() {
-    // Roots of P_n by Newton's method from Chebyshev guesses; w = 2 / ((1 - x^2) P_n'(x)^2).
     GaussLegendre g;
-    const int n = GaussLegendre::kN;
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0.0;
-        for (int iter = 0; iter < 100; ++iter) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double dx = p1 / dp;
-            x -= dx;
-            if (std::abs(dx) < 1e-16) break;  // converged to double precision (|x| < 1)
-        }
-        g.x[size_t(i)] = x;
-        g.w[size_t(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
-    }
+    std::vector<double> x, w;
+    hilite::gaussLegendre(GaussLegendre::kN, x, w);
+    std::copy(x.begin(), x.end(), g.x.begin());
+    std::copy(w.begin(), w.end(), g.w.begin());
     return g;
 }
 

@@ -23,6 +23,7 @@ const char* toString(Flag f) {
         case Flag::NotStarShaped: return "not_star_shaped";
         case Flag::PartsNotMeasured: return "parts_not_measured";
         case Flag::NotConverged: return "not_converged";
+        case Flag::LightUndersampled: return "light_undersampled";
     }
     return "unknown";
 }

@@ -36,6 +36,9 @@ enum class Flag {
     /// reference only: the scan lines' adaptive quadrature ran out of its budget before its tolerance (a lobe
     /// far thinner than any box the survey could give it): the numbers are the last estimate
     NotConverged,
+    /// a sphere or disk light: the GL rule's points over the light are too sparse for the lobe (its radiance
+    /// differs from the exact integral by more than 1% of the peak: light_rule_error); raise --light-rings
+    LightUndersampled,
 };
 
 /// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame", "mirror",

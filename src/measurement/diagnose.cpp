@@ -1,6 +1,7 @@
 #include "measurement/diagnose.hpp"
 
 #include "brdf/evaluate.hpp"
+#include "render/area_light.hpp"
 #include "measurement/measure_scene.hpp"
 
 #include <algorithm>
@@ -66,7 +67,12 @@ bool unboundedAtHorizon(const render::Scene& scene, const measure::Shape& shape)
 
 bool lightReaches(const render::Scene& scene) {
     const render::Light& l = scene.light;
-    if (l.type == render::LightType::Point) return l.intensity > 0 && l.position().z > 0;
+    switch (l.type) {
+        case render::LightType::Point: return l.intensity > 0 && l.position().z > 0;
+        case render::LightType::Sphere: return l.intensity > 0;  // resolve keeps the sphere above the plane
+        case render::LightType::Disk: return l.irradiance > 0 && l.incidenceDeg - l.angleDeg < 90.0;
+        case render::LightType::Directional: break;
+    }
     return l.irradiance > 0 && l.direction().z > 0;
 }
 
@@ -80,6 +86,9 @@ void diagnose(const render::Scene& scene, double threshold, Path path, measure::
         if (lightReaches(scene) && F > 0) replace(shape, Flag::NoHighlight, Flag::Mirror);
         return;
     }
+    if (path != Path::Reference && scene.light.area() && render::lightRule(scene).error > kLightRuleFlag &&
+        !shape.has(Flag::LightUndersampled))
+        shape.flags.push_back(Flag::LightUndersampled);
     if (unboundedAtHorizon(scene, shape) && !shape.has(Flag::UnboundedAtHorizon)) shape.flags.push_back(Flag::UnboundedAtHorizon);
     const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
     if (!(w.peak > 0)) return;

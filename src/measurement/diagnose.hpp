@@ -23,6 +23,9 @@ constexpr double kFloatDirectionStep = 5.9604644775390625e-8;  // 2^-24
 /// incidence is the exception the flag does not try to see: with wi = n the shader's arithmetic stays exact
 /// and even 2 steps measure within 4e-4.
 constexpr double kEffectivelyMirrorHalfWidth = 8.0 * kFloatDirectionStep;  // 4.8e-7 rad
+/// A sphere or disk light's rule whose radiance error (render::lightRule, relative to the lobe's peak) exceeds this
+/// is `light_undersampled`: near the contour a 1% error of the peak moves it by about 1% of the lobe's width.
+constexpr double kLightRuleFlag = 1e-2;
 
 /// The twin's lobe about the mirror direction.
 struct LobeWidths {

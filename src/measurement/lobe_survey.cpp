@@ -73,7 +73,7 @@ LobeSurvey scan(const render::Scene& scene);
 /// framed about the mirror direction or about its peak (a directional light's lobe is the same either way).
 LobeSurvey scannedLobe(const render::Scene& scene) {
     render::Scene key = scene;
-    if (key.light.type == render::LightType::Directional) key.light.chartCenter.reset();
+    if (key.light.distant()) key.light.chartCenter.reset();
     thread_local std::string lastKey;
     thread_local LobeSurvey last;
     std::string k = keyOf(key, 0.0);
@@ -87,7 +87,7 @@ LobeSurvey scannedLobe(const render::Scene& scene) {
 std::string keyOf(const render::Scene& s, double frac) {
     std::ostringstream key;
     key.precision(17);
-    key << s << " type=" << int(s.light.type) << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get() << " measured=" << s.brdf.measured.get()
+    key << s << " type=" << int(s.light.type) << " radius=" << s.light.radius << " angle=" << s.light.angleDeg << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get() << " measured=" << s.brdf.measured.get()
         << " spectrum=" << s.brdf.spectrum.get() << " frac=" << frac;
     if (s.light.chartCenter) key << " centre=" << s.light.chartCenter->x << "," << s.light.chartCenter->y << "," << s.light.chartCenter->z;
     return key.str();

@@ -37,7 +37,7 @@ std::optional<render::Scene> frameAboutPeak(const render::Scene& scene, double t
     // lobe it sees would move with the frame: both stay about the mirror direction.
     // Without a CPU twin (a .brdf file) there is no lobe to search: blind framing finds its region instead.
     if (!render::hasTwin(scene)) return std::nullopt;
-    if (scene.light.chartCenter || scene.surface.bumps || scene.light.type != render::LightType::Directional)
+    if (scene.light.chartCenter || scene.surface.bumps || !scene.light.distant())
         return std::nullopt;
     const LobePeak p = findPeak(scene);
     if (!(p.value > 0) || p.mirrorValue >= threshold * p.value) return std::nullopt;  // wr inside the region

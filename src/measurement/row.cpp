@@ -5,6 +5,7 @@
 #include "measurement/micro_fields.hpp"
 #include "measurement/peak_frame.hpp"
 #include "measurement/tolerance.hpp"
+#include "render/area_light.hpp"
 
 #include <cmath>
 #include <tuple>
@@ -119,10 +120,16 @@ json row(const scene::Resolved& r, const Measurement& m, int width, int height, 
     if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable && !s.brdfFile)
         j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
     // Under a point light each point of the plane has its own wi: the measured lobe is the eye's view.
-    j["lobe"] = s.light.type == render::LightType::Point
-                    ? "as seen by the eye at distance " + std::to_string(s.eyeDistance) + " (point light)"
-                    : std::string("exitant directions (distant light)");
+    j["lobe"] = !s.light.distant() ? "as seen by the eye at distance " + std::to_string(s.eyeDistance) + " (" +
+                                         render::toString(s.light.type) + " light)"
+                                   : std::string("exitant directions (distant light)");
     j["method"] = method;
+    if (s.light.area()) {  // what of the light is integrated, and how well the GL rule (and the cpu path's twin) does it
+        j["light_visible"] = s.light.type == render::LightType::Disk
+                                 ? render::capVisibleFraction(render::lightCap(s.light, s.light.position()))
+                                 : 1.0;  // a sphere above the plane is wholly above every point's horizon
+        j["light_rule_error"] = method == "reference" ? json(nullptr) : json(render::lightRule(s).error);
+    }
     double offsetDeg = 0;  // a highlight far from the mirror direction is measured about its peak
     j["framed_about"] = framedAbout(s, r.setup.options.threshold, offsetDeg);
     j["peak_offset_deg"] = offsetDeg;
@@ -180,6 +187,8 @@ const std::vector<std::string>& measurementColumns() {
         "error_estimate", "error_estimate_from", "table_error", "table_error_from", "render_ms", "measure_ms",
         // what the highlight is measured about (retroreflection: its peak), a tabulated NDF's factor
         "framed_about", "peak_offset_deg", "ndf_table_normalization",
+        // a sphere or disk light: the part of it above the horizon, the GL rule's radiance error (render/area_light.hpp)
+        "light_visible", "light_rule_error",
         // explicit micro-geometry (empty on flat surfaces): measurement/micro_fields.hpp
         "log2_bump_period_px", "bump_samples_center", "analytic_aspect", "analytic_major_deg", "analytic_minor_deg",
         "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms", "slope_ks",

@@ -1,6 +1,7 @@
 #pragma once
 // The measurement view rendered on the CPU by the double-precision twin: for every pixel, the exitant
-// direction of its camera ray, render::surfaceRadiance (brdf::evaluate in double) and the chart
+// direction of its camera ray, render::surfaceRadiance (brdf::evaluate in double; a sphere or disk light by the
+// GL's rule, render::areaRadianceRule) and the chart
 // coordinates, exactly the channels shaders/shade.frag writes for Output::Measure. The GL path's
 // float shader against this path is one of the accuracy knobs; both feed measure::measureImage.
 
@@ -18,8 +19,9 @@ namespace hilite::render {
 void renderMeasureCpu(const Scene& scene, const PinholeCamera& camera, ImageF& image, dvec2 jitter = dvec2(0.0),
                       const PixelRect& crop = {}, int threads = 0);
 
-/// The (L, u, v, w) of one sample point (px, py) in pixel units (pixel centres at i + 0.5).
+/// The (L, u, v, w) of one sample point (px, py) in pixel units (pixel centres at i + 0.5); `rings`: a sphere or
+/// disk light's rule (render::lightRings: the GL rule's, so that both paths integrate the light alike).
 void measurePixelCpu(const Scene& scene, const PinholeCamera& camera, const MirrorChart& chart, double px, double py,
-                     float* out);
+                     float* out, int rings = 0);
 
 }  // namespace hilite::render

@@ -1,6 +1,7 @@
 #include "render/renderer.hpp"
 
 #include "brdf/energy.hpp"
+#include "render/area_light.hpp"
 #include "brdf/evaluate.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
@@ -27,20 +28,70 @@ std::ostream& operator<<(std::ostream& os, const Scene& s) {
     } else {
         os << s.brdf;
     }
-    os << " light=" << toString(s.light.type) << " incidence=" << s.light.incidenceDeg
-       << " azimuth=" << s.light.azimuthDeg;
-    if (s.light.type == LightType::Point)
-        return os << " intensity=" << s.light.intensity << " light_distance=" << s.light.distance
-                  << " eye_distance=" << s.eyeDistance;
-    return os << " irradiance=" << s.light.irradiance;
+    const Light& l = s.light;
+    os << " light=" << toString(l.type) << " incidence=" << l.incidenceDeg << " azimuth=" << l.azimuthDeg;
+    if (l.area()) os << " rings=" << (l.rings > 0 ? std::to_string(l.rings) : "auto") << " rule_target=" << l.ruleTarget;
+    if (l.type == LightType::Sphere) os << " light_radius=" << l.radius;
+    if (l.type == LightType::Disk) os << " light_angle=" << l.angleDeg;
+    if (!l.distant())
+        return os << " intensity=" << l.intensity << " light_distance=" << l.distance << " eye_distance=" << s.eyeDistance;
+    return os << " irradiance=" << l.irradiance;
 }
 
-const char* toString(LightType t) { return t == LightType::Point ? "point" : "directional"; }
+const char* toString(LightType t) {
+    switch (t) {
+        case LightType::Directional: return "directional";
+        case LightType::Point: return "point";
+        case LightType::Sphere: return "sphere";
+        case LightType::Disk: return "disk";
+    }
+    return "?";
+}
+
+namespace {
+
+/// The light's block of shade.frag, named by its define; "" for the directional light (the default code).
+std::string lightDefine(LightType light) {
+    switch (light) {
+        case LightType::Point: return "#define HILITE_LIGHT_POINT 1\n";
+        case LightType::Sphere: return "#define HILITE_LIGHT_SPHERE 1\n";
+        case LightType::Disk: return "#define HILITE_LIGHT_DISK 1\n";
+        case LightType::Directional: break;
+    }
+    return "";
+}
+
+/// The program cache's key suffix of the light.
+std::string lightKey(LightType light) { return light == LightType::Directional ? "" : std::string("+") + toString(light) + "Light"; }
+
+}  // namespace
+
+std::string describeLight(const Scene& scene) {
+    const Light& l = scene.light;
+    std::ostringstream s;
+    switch (l.type) {
+        case LightType::Directional: return "directional light (E cos)";
+        case LightType::Point: return "point light (I cos / d^2 per point)";
+        case LightType::Sphere:
+            s << "sphere light of radius " << l.radius << " (radiance I / (pi R^2), integrated over its cap per point)";
+            break;
+        case LightType::Disk:
+            s << "disk light of angular radius " << l.angleDeg << " deg (radiance E / (pi sin^2 delta), integrated over "
+              << "its cap)";
+            break;
+    }
+    if (scene.brdfFile) return s.str();
+    const RuleCheck rule = lightRule(scene);
+    s << ": GL rule " << rule.rings << " rings x " << 4 * rule.rings << " azimuths = " << 4 * rule.rings * rule.rings
+      << " points per pixel (" << (l.rings > 0 ? "as given" : "chosen") << "; radiance error " << rule.error
+      << " of the peak against the exact integral; the twin integrates adaptively to " << kExactTolerance << ")";
+    return s.str();
+}
 
 ProgramSources programSources(const brdf::Params& p, Output out, LightType light, const std::string& shaderDir,
                               bool bumps) {
     ProgramSources src = assemble(p, out, shaderDir);
-    if (light == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    src.fragment.front().text += lightDefine(light);
     if (bumps) addBumpSources(src, p, shaderDir);
     return src;
 }
@@ -48,7 +99,7 @@ ProgramSources programSources(const brdf::Params& p, Output out, LightType light
 ProgramSources programSources(const Scene& scene, Output out, const std::string& shaderDir) {
     if (!scene.brdfFile) return programSources(scene.brdf, out, scene.light.type, shaderDir, scene.surface.bumps);
     ProgramSources src = assembleBrdfFile(*scene.brdfFile, out, shaderDir);
-    if (scene.light.type == LightType::Point) src.fragment.front().text += "#define HILITE_LIGHT_POINT 1\n";
+    src.fragment.front().text += lightDefine(scene.light.type);
     return src;
 }
 
@@ -56,12 +107,10 @@ std::vector<std::string> activeEffects(const Scene& scene) {
     if (scene.brdfFile) {  // the file's BRDF() is the whole reflectance: no built-in term runs, and no CPU twin
         return {".brdf file " + scene.brdfFile->path + ": its BRDF() (" + brdf_file::valuesText(*scene.brdfFile) +
                     "), GLSL only: no CPU twin",
-                scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
-                                                     : "directional light (E cos)"};
+                describeLight(scene)};
     }
     std::vector<std::string> out = termBlocks(scene.brdf);
-    out.push_back(scene.light.type == LightType::Point ? "point light (I cos / d^2 per point)"
-                                                       : "directional light (E cos)");
+    out.push_back(describeLight(scene));
     if (scene.surface.bumps) out.push_back(bumpEffect(scene));
     if (scene.brdf.measured) {  // the table is the whole BRDF: no analytic term runs
         const brdf::merl::MeasuredBrdf& m = *scene.brdf.measured;
@@ -99,6 +148,7 @@ dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we) {
     if (s.light.type == LightType::Directional)
         return brdf::radiance(s.brdf, s.light.direction(), we, s.light.irradiance);
     const dvec3 p = eye - (eye.z / we.z) * we;  // where the eye's ray meets the plane
+    if (s.light.area()) return areaRadianceExact(s, p, we);
     const dvec3 toLight = s.light.position() - p;
     const double d2 = glm::dot(toLight, toLight);
     return brdf::radiance(s.brdf, toLight / std::sqrt(d2), we, s.light.intensity / d2);
@@ -152,6 +202,22 @@ void set3(const gl::Program& p, const char* name, const dvec3& v) {
     p.set(name, float(v.x), float(v.y), float(v.z));
 }
 
+/// The area light's rule and cap (shade.frag, HILITE_LIGHT_SPHERE / HILITE_LIGHT_DISK): the rings and their
+/// nodes and weights, the radiance L and the cap's size, all computed in double here.
+void setAreaLightUniforms(const gl::Program& prog, const Scene& scene) {
+    const int n = lightRings(scene);
+    const RingRule& rule = ringRule(n);
+    float x[kMaxRings] = {}, w[kMaxRings] = {};
+    for (int i = 0; i < n; ++i) x[i] = float(rule.x[size_t(i)]), w[i] = float(rule.w[size_t(i)]);
+    glUniform1i(prog.uniform("uRings"), n);
+    glUniform1fv(prog.uniform("uRingX"), kMaxRings, x);
+    glUniform1fv(prog.uniform("uRingW"), kMaxRings, w);
+    const LightCap cap = lightCap(scene.light, scene.light.position());  // L (and the disk's cap) hold everywhere
+    prog.set("uCapRadiance", float(cap.radiance));
+    if (scene.light.type == LightType::Sphere) prog.set("uLightRadius", float(scene.light.radius));
+    else prog.set("uCapHalfAngle", float(cap.halfAngle));
+}
+
 }  // namespace
 
 Renderer::Renderer(gl::Context& /*current*/, std::string shaderDir)
@@ -177,7 +243,7 @@ Renderer::~Renderer() {
 
 const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightType light, bool bumps) {
     const std::string key =
-        effectKey(p, out) + (light == LightType::Point ? "+pointLight" : "") + (bumps ? "+bumps" : "");
+        effectKey(p, out) + lightKey(light) + (bumps ? "+bumps" : "");
     auto it = m_programs.find(key);
     if (it != m_programs.end()) return *it->second;
     const ProgramSources src = programSources(p, out, light, m_shaderDir, bumps);
@@ -188,7 +254,7 @@ const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightTyp
 const gl::Program& Renderer::program(const Scene& scene, Output out) {
     if (!scene.brdfFile) return program(scene.brdf, out, scene.light.type, scene.surface.bumps);
     const brdf_file::BrdfFile& f = *scene.brdfFile;
-    const std::string key = brdfFileKey(f, out) + (scene.light.type == LightType::Point ? "+pointLight" : "");
+    const std::string key = brdfFileKey(f, out) + lightKey(scene.light.type);
     auto it = m_programs.find(key);
     if (it != m_programs.end()) return *it->second;
     const ProgramSources src = programSources(scene, out, m_shaderDir);
@@ -229,11 +295,12 @@ void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const Pi
     prog.set("uViewport", float(cam.width), float(cam.height));
     set3(prog, "uWi", scene.light.direction());
     prog.set("uIrradiance", float(scene.light.irradiance));
-    if (prog.uniform("uLightPos") >= 0) {  // point light only
+    if (prog.uniform("uLightPos") >= 0) {  // point and sphere lights
         set3(prog, "uLightPos", scene.light.position());
         prog.set("uIntensity", float(scene.light.intensity));
         set3(prog, "uCamPos", cam.position);
     }
+    if (scene.light.area()) setAreaLightUniforms(prog, scene);
     const MirrorChart chart = scene.light.chart();
     set3(prog, "uWr", chart.wr());
     set3(prog, "uEu", chart.eu());

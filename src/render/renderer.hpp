@@ -26,6 +26,8 @@ ProgramSources programSources(const brdf::Params& p, Output out, LightType light
 ProgramSources programSources(const Scene& scene, Output out, const std::string& shaderDir);
 /// The effects a scene runs, in the program and in the CPU twin alike: the term blocks and the light.
 std::vector<std::string> activeEffects(const Scene& scene);
+/// The light as `explain` names it; for a sphere or disk also the GL rule it renders with (render::lightRule).
+std::string describeLight(const Scene& scene);
 
 class Renderer {
 public:

@@ -17,24 +17,40 @@ namespace hilite::render {
 enum class LightType {
     Directional,  ///< distant: irradiance E from one direction, the same at every point of the plane
     Point,        ///< isotropic point: intensity I, irradiance I cos(theta) / d^2 (inverse-square law)
+    Sphere,       ///< a uniformly glowing sphere of radius R: the point light's intensity I (power 4 pi I)
+    Disk,         ///< distant disk of angular radius delta (the sun): irradiance E normal to it
 };
 const char* toString(LightType);
 
 /// The light: its direction from the origin by incidence theta_i and azimuth phi_i. A directional light
 /// delivers irradiance E (on a surface facing it), so the plane receives E cos(theta_i); a point light
 /// sits at `distance` along that direction and delivers I cos(theta) / d^2 at each point of the plane.
+/// A sphere (centre there, radius R) and a disk (distant, angular radius delta) are caps of directions of
+/// uniform radiance integrated over (render/area_light.hpp): the seed's point light as their limit.
 struct Light {
     LightType type = LightType::Directional;
     double incidenceDeg = 45.0;
     double azimuthDeg = 0.0;
-    double irradiance = 1.0;  ///< directional E
-    double intensity = 1.0;   ///< point I
-    double distance = 10.0;   ///< point: distance from the origin
+    double irradiance = 1.0;  ///< directional, disk: E
+    double intensity = 1.0;   ///< point, sphere: I
+    double distance = 10.0;   ///< point, sphere: distance of the centre from the origin
+    double radius = 0.1;      ///< sphere: R (< the centre's height above the plane)
+    double angleDeg = 0.266;  ///< disk: angular radius delta (the sun's mean: 0.266 deg)
+    /// sphere, disk: the GL rule's rings n (n Gauss-Legendre nodes x 4n azimuths); 0: chosen per scene
+    /// (render::lightRings) to reach `ruleTarget`.
+    int rings = 0;
+    /// sphere, disk with rings 0: the largest radiance error of the rule, relative to the lobe's peak, that
+    /// the automatic choice accepts (set from --tolerance when one is given).
+    double ruleTarget = 1e-3;
     /// The measurement chart's centre when it is not the mirror direction (a highlight framed about a peak far
     /// from it, e.g. retroreflection: experiments/peak_frame.hpp). Unset: the mirror direction.
     std::optional<dvec3> chartCenter;
     dvec3 direction() const { return sphericalDirectionDeg(incidenceDeg, azimuthDeg); }
     dvec3 position() const { return distance * direction(); }
+    /// A light at infinity: the reflected radiance depends on the exitant direction alone.
+    bool distant() const { return type == LightType::Directional || type == LightType::Disk; }
+    /// A light with size: its radiance is integrated over a cap of directions.
+    bool area() const { return type == LightType::Sphere || type == LightType::Disk; }
     /// The chart about the mirror direction, or about chartCenter (the mirror chart of a light whose mirror
     /// direction is that centre: +u still points toward the normal).
     MirrorChart chart() const {

@@ -6,6 +6,7 @@
 #include "brdf/params.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
+#include "render/area_light.hpp"
 #include "render/surface.hpp"
 #include "scene/resolve.hpp"
 
@@ -46,8 +47,11 @@ bool diffuse(const Resolved& r) { return builtin(r) && r.scene.brdf.diffuse != b
 bool orenNayar(const Resolved& r) { return builtin(r) && r.scene.brdf.diffuse == brdf::Diffuse::OrenNayar; }
 bool tabulated(const Resolved& r) { return builtin(r) && r.scene.brdf.model == Model::Tabulated; }
 bool brdfFile(const Resolved& r) { return bool(r.scene.brdfFile); }
-bool directional(const Resolved& r) { return r.scene.light.type == render::LightType::Directional; }
-bool point(const Resolved& r) { return r.scene.light.type == render::LightType::Point; }
+bool sphere(const Resolved& r) { return r.scene.light.type == render::LightType::Sphere; }
+bool disk(const Resolved& r) { return r.scene.light.type == render::LightType::Disk; }
+bool distant(const Resolved& r) { return r.scene.light.distant(); }
+bool atDistance(const Resolved& r) { return !r.scene.light.distant(); }  ///< point, sphere
+bool area(const Resolved& r) { return r.scene.light.area(); }
 bool bumps(const Resolved& r) { return r.scene.surface.bumps; }
 bool fixedFraming(const Resolved& r) { return r.fovDeg > 0; }
 bool tolerance(const Resolved& r) { return r.tolerance > 0; }
@@ -164,17 +168,33 @@ std::vector<Param> build() {
          "every scene", nullptr, "incidence_deg", [](const Resolved& r) -> json { return r.scene.light.incidenceDeg; }});
     add({"azimuth", T::Light, K::Number, "0", -360, 360, false, false, {}, "deg", "light azimuth phi_i", "every scene",
          nullptr, "azimuth_deg", [](const Resolved& r) -> json { return r.scene.light.azimuthDeg; }});
-    add({"light", T::Light, K::Choice, "directional", 0, 0, false, false, {"directional", "point"}, "",
-         "directional (distant, irradiance E) | point (intensity I, I cos / d^2)", "every scene", nullptr, "light",
-         [](const Resolved& r) -> json { return render::toString(r.scene.light.type); }});
+    add({"light", T::Light, K::Choice, "directional", 0, 0, false, false, {"directional", "point", "sphere", "disk"}, "",
+         "directional (distant, irradiance E) | point (intensity I, I cos / d^2) | sphere (radius R, intensity I: "
+         "radiance I / (pi R^2)) | disk (distant, angular radius delta, irradiance E: radiance E / (pi sin^2 delta))",
+         "every scene", nullptr, "light", [](const Resolved& r) -> json { return render::toString(r.scene.light.type); }});
     add({"irradiance", T::Light, K::Number, "1", 0, 1e6, false, false, {}, "",
-         "light irradiance E (normal to the light)", "light directional", directional, "irradiance",
+         "light irradiance E (normal to the light)", "light directional, disk", distant, "irradiance",
          [](const Resolved& r) -> json { return r.scene.light.irradiance; }});
-    add({"intensity", T::Light, K::Number, "1", 0, 1e12, false, false, {}, "", "point light intensity I",
-         "light point", point, "intensity", [](const Resolved& r) -> json { return r.scene.light.intensity; }});
+    add({"intensity", T::Light, K::Number, "1", 0, 1e12, false, false, {}, "",
+         "point or sphere light intensity I (the sphere's power is the point's, 4 pi I)", "light point, sphere",
+         atDistance, "intensity", [](const Resolved& r) -> json { return r.scene.light.intensity; }});
     add({"light_distance", T::Light, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
-         "point light distance from the origin", "light point", point, "light_distance",
-         [](const Resolved& r) -> json { return r.scene.light.distance; }});
+         "point light (sphere: its centre) distance from the origin", "light point, sphere", atDistance,
+         "light_distance", [](const Resolved& r) -> json { return r.scene.light.distance; }});
+    add({"light_radius", T::Light, K::Number, "0.1", 0, 1e6, true, false, {}, "",
+         "sphere radius R, below its centre's height light_distance x cos(incidence) (a sphere that reaches the "
+         "plane is refused)",
+         "light sphere", sphere, "light_radius", [](const Resolved& r) -> json { return r.scene.light.radius; }});
+    add({"light_angle", T::Light, K::Number, "0.266", 0, 90, true, true, {}, "deg",
+         "disk angular radius delta (the sun: 0.266); a disk that reaches below the horizon is integrated over "
+         "its visible part (light_visible says how much)",
+         "light disk", disk, "light_angle", [](const Resolved& r) -> json { return r.scene.light.angleDeg; }});
+    add({"light_rings", T::Light, K::Integer, "auto", 1, render::kMaxRings, false, false, {}, "",
+         "sphere, disk: the GL rule over the light, n rings (Gauss-Legendre in 1 - cos) x 4n azimuths = 4n^2 "
+         "points per pixel; auto: the fewest rings whose radiance error against the exact integral is within 1e-3 "
+         "of the peak (tolerance / 4 with --tolerance)",
+         "light sphere, disk", area, "light_rings", [](const Resolved& r) -> json { return render::lightRings(r.scene); }});
+    p.back().automatic = "auto";
 
     // ---- [camera] ----
     add({"size", T::Camera, K::Size, "512", 1, 16384, false, false, {}, "px", "image size: PX or WxH", "every scene",
@@ -193,8 +213,8 @@ std::vector<Param> build() {
          "render --view photo", nullptr, "", nullptr});
     p.back().automatic = "auto";
     add({"distance", T::Camera, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
-         "eye distance from the origin (photo view; measurement view under a point light)", "light point; photo view",
-         point, "distance", [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
+         "eye distance from the origin (photo view; measurement view under a point or sphere light)",
+         "light point, sphere; photo view", atDistance, "distance", [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
     add({"gl_backend", T::Camera, K::Choice, "", 0, 0, false, false, gl::backendNames(), "",
          "auto (a GPU through EGL device if there is one, else osmesa, else egl) | osmesa | egl (surfaceless) | "
          "egl-device (EGL_EXT_platform_device: --gpu N, default the first GPU, else Mesa's software device) "
@@ -317,7 +337,7 @@ std::string Param::allowed() const {
     auto interval = [&] { return rangeText(lo, hi, openLo, openHi); };
     switch (kind) {
         case Kind::Number: return (automatic.empty() ? "" : automatic + " | ") + interval();
-        case Kind::Integer: return interval();
+        case Kind::Integer: return (automatic.empty() ? "" : automatic + " | ") + interval();
         case Kind::Choice: return join(choices, " | ");
         case Kind::Rgb: return "V or R,G,B, each in " + interval();
         case Kind::Switch: return "true | false";
@@ -394,11 +414,13 @@ std::string check(const Param& p, const std::string& text) {
             break;
         }
         case Kind::Integer: {
+            if (!p.automatic.empty() && text == p.automatic) break;
             const auto v = parseNumber(text);
             // Above 2^53 a double holds no odd number: the text itself must not exceed what was read.
             const bool exact = !v || std::abs(*v) < 9007199254740992.0 || text == exactText(*v);
             if (!v || !inRange(*v) || *v != std::floor(*v) || !exact)
-                err = "must be a whole number in " + p.allowed() + " (got '" + text + "')";
+                err = "must be " + (p.automatic.empty() ? std::string() : p.automatic + " or ") + "a whole number in " +
+                      rangeText(p.lo, p.hi, p.openLo, p.openHi) + " (got '" + text + "')";
             break;
         }
         case Kind::Choice:

@@ -286,6 +286,38 @@ void checkScene(const Reader& in, const render::Scene& s) {
                          "bumps are a remapped normal map; use supersample or auto)");
 }
 
+render::LightType lightType(const std::string& name) {
+    if (name == "point") return render::LightType::Point;
+    if (name == "sphere") return render::LightType::Sphere;
+    if (name == "disk") return render::LightType::Disk;
+    return render::LightType::Directional;
+}
+
+/// A light's own rules: a sphere must stay above the plane at every incidence of the sweep (its centre at height
+/// light_distance cos(theta_i) > R; then no point of the plane sees any of it below the horizon); a light with size
+/// is integrated by hilite's terms, which a .brdf file's GLSL and the bump render's Gaussian sun are not.
+void checkLight(const Reader& in, const render::Light& l, const std::vector<double>& angles) {
+    // Like every parameter, a light's size given to a light without one is checked and unused (`explain` writes
+    // every key of the resolved scene, and its output must read back).
+    if (!l.area()) return;
+    const std::string w = in.where("light") + " " + render::toString(l.type);
+    if (in.given("brdf"))
+        throw InputError(w + ": not with " + in.where("brdf") + " (a .brdf file has no CPU twin to check the light's "
+                                                               "quadrature against; use a point or directional light)");
+    if (in.given("bumps") && in.text("bumps") == "explicit")
+        throw InputError(w + ": not with --bumps explicit (the bump render is lit by its own Gaussian sun, --sun)");
+    if (l.type != render::LightType::Sphere) return;
+    for (double a : angles) {
+        double c, unused;
+        cosSinDeg(a, c, unused);
+        const double height = l.distance * c;
+        if (!(l.radius < height))
+            throw InputError(in.where("light_radius") + ": a sphere of radius " + fmt(l.radius) + " at distance " +
+                             fmt(l.distance) + " and incidence " + fmt(a) + " deg reaches the plane (its centre is " +
+                             fmt(height) + " above it): the radius must be below " + fmt(height));
+    }
+}
+
 /// --gpu N: only for the backends that render on an EGL device, and below the number of devices (checked
 /// here, before anything is written, not when the context is made).
 int gpuIndex(const Reader& in, gl::Backend backend) {
@@ -361,14 +393,18 @@ Resolved resolve(const Values& values, Purpose purpose) {
     }
     s.light.azimuthDeg = in.number("azimuth");
     s.light.irradiance = in.number("irradiance");
-    s.light.type = in.text("light") == "point" ? render::LightType::Point : render::LightType::Directional;
+    s.light.type = lightType(in.text("light"));
     s.light.intensity = in.number("intensity");
     s.light.distance = in.number("light_distance");
+    s.light.radius = in.number("light_radius");
+    s.light.angleDeg = in.number("light_angle");
+    s.light.rings = int(in.numberOrAutomatic("light_rings").value_or(0.0));
     s.eyeDistance = in.number("distance");
     s.surface = resolveSurface(in);
     checkScene(in, s);
     r.angles = in.angles("incidence");
     s.light.incidenceDeg = r.angles.front();
+    checkLight(in, s.light, r.angles);
 
     in.size("size", r.setup.width, r.setup.height);
     r.fovDeg = in.numberOrAutomatic("fov").value_or(0.0);  // 0: automatic (the registry refuses a given 0)
@@ -389,6 +425,9 @@ Resolved resolve(const Values& values, Purpose purpose) {
     r.setup.crop = in.text("crop") == "on";
     r.setup.coarseSize = int(in.number("aim_size"));
     r.tolerance = in.given("tolerance") ? in.number("tolerance") : 0.0;
+    // The light's rule takes a quarter of the error budget: its radiance error moves the contour by about as much
+    // relative to the lobe's width (render/area_light.hpp).
+    if (r.tolerance > 0) s.light.ruleTarget = 0.25 * r.tolerance;
     r.reference = in.flag("reference");
     if (purpose == Purpose::Measure) checkMeasurement(in, r);
     return r;
