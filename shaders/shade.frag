@@ -26,7 +26,7 @@ uniform float uCapRadiance;  // L: sphere I / (pi R^2), disk E / (pi sin^2 delta
 #if defined(HILITE_LIGHT_SPHERE)
 uniform float uLightRadius;  // R
 #else
-uniform float uCapHalfAngle; // delta (rad)
+uniform float uCapU;         // 1 - cos(delta)
 #endif
 #endif
 uniform vec3 uWr;         // chart: mirror direction, +u (towards the normal), +v
@@ -50,9 +50,10 @@ vec2 chartCoords(vec3 we, out float rhoOverSin) {
 }
 
 #if defined(HILITE_LIGHT_AREA)
-// int_cap f(wi, we) L cos(theta_i) dwi over a cap of directions (centre c, angular radius halfAngle) by the rule
-// of uRings rings x 4 uRings azimuths, each ray cut at the horizon. Twin: render::capRule (render/area_light.cpp).
-vec3 capRadiance(vec3 c, float halfAngle, vec3 we) {
+// int_cap f(wi, we) L cos(theta_i) dwi over a cap of directions (centre c, capU = 1 - cos(angular radius)) by the
+// rule of uRings rings x 4 uRings azimuths, each ray cut at the horizon. Twin: render::capRule (render/area_light.cpp).
+// No inverse trigonometry: llvmpipe's asin and atan are good to ~1e-4 only.
+vec3 capRadiance(vec3 c, float capU, vec3 we) {
     float s = length(c.xy);  // tangent frame: a points down toward the horizon, b is horizontal
     vec3 a = s > 0.0 ? vec3(c.x * c.z / s, c.y * c.z / s, -s) : vec3(1.0, 0.0, 0.0);
     vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
@@ -61,10 +62,9 @@ vec3 capRadiance(vec3 c, float halfAngle, vec3 we) {
     for (int j = 0; j < m; ++j) {
         float phi = 6.283185307 * (float(j) + 0.5) / float(m);
         float cp = cos(phi), sp = sin(phi);
-        // wi.z = c.z cos(beta) + cp a.z sin(beta) > 0 up to atan(cp a.z, c.z) + pi/2 (render::capEdge).
-        float beta = clamp(atan(cp * a.z, c.z) + 1.570796327, 0.0, halfAngle);
-        float sh = sin(0.5 * beta);
-        float uMax = 2.0 * sh * sh;  // 1 - cos(beta) without cancellation
+        // The horizon ends the ray where 1 - cos(beta) = c.z^2 / (r (r - k)), k = cp a.z < 0 (render::horizonEdge).
+        float k = cp * a.z, r = sqrt(k * k + c.z * c.z);
+        float uMax = k >= 0.0 ? capU : min(capU, r > 0.0 ? c.z * c.z / (r * (r - k)) : 0.0);
         vec3 d = cp * a + sp * b;
         for (int i = 0; i < uRings; ++i) {
             float u = uMax * uRingX[i];
@@ -87,10 +87,11 @@ void main() {
     vec3 toLight = uLightPos - P;
     float dist = length(toLight);
     vec3 wi = toLight / dist;
-    float capHalfAngle = asin(min(1.0, uLightRadius / dist));
+    float sinAlpha = min(1.0, uLightRadius / dist);
+    float capU = sinAlpha * sinAlpha / (1.0 + sqrt(1.0 - sinAlpha * sinAlpha));  // 1 - cos(alpha)
 #elif defined(HILITE_LIGHT_DISK)
     vec3 wi = uWi;  // the disk's centre; part of it may lie below the horizon (capRadiance cuts each ray)
-    float capHalfAngle = uCapHalfAngle;
+    float capU = uCapU;
 #elif defined(HILITE_LIGHT_POINT)
     // Point light: wi and the irradiance I cos(theta_i) / d^2 belong to the point this pixel sees.
     vec3 P = uCamPos - (uCamPos.z / we.z) * we;
@@ -111,7 +112,7 @@ void main() {
         return;
     }
 #if defined(HILITE_LIGHT_AREA)
-    vec3 rad = capRadiance(wi, capHalfAngle, we);
+    vec3 rad = capRadiance(wi, capU, we);
 #elif defined(HILITE_BUMPS)
     // Explicit micro-geometry: mirror facets of the bump field under a soft sun (shaders/micro.glsl).
     vec3 rad = bumpRadiance(gl_FragCoord.xy, wi, E, uCamBack, uCamRight, uCamUp, uTanHalf, uViewport);

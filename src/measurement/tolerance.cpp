@@ -9,12 +9,16 @@
 // The subpixel boundary is on the Pareto front of every scene measured (pixel in/out costs the same time
 // and is 5-30x less accurate; supersampling multiplies the time by n^2 for less than the size would give),
 // so the only knob chosen here is the size.
+// A sphere or disk light's rule is chosen by render::lightRule for a radiance error of E / 4 of the peak (the
+// registry's light_rings auto, resolve sets ruleTarget); near the contour that moves the region's edges by about as
+// much relative to the lobe's width, so the aspect by at most twice it: 2 x its measured error joins the estimate.
 // --spectral-fresnel is read, not chosen: the table moves the aspect by at most 5.5e-8 against the exact sum
 // (the copper cases of experiments/accuracy_cost on its 8 scenes), below the smallest tolerance (1e-5).
 
 #include "measurement/tolerance.hpp"
 
 #include "core/error.hpp"
+#include "render/area_light.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -83,6 +87,7 @@ ToleranceResult measureToTolerance(render::Renderer* renderer, const render::Sce
     r.startup_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     t0 = Clock::now();
     Extent e = twinExtent(scene, t.base.options.threshold);
+    const double lightError = 2.0 * render::lightRule(scene).error;  // 0 for a point or directional light
     int order = e.horizon ? 1 : 2;
     double c = e.horizon ? kFirstOrder : kSecondOrder;
     int i = chooseSize(t.base, e, t.tolerance / kSafety, 0, c, order);
@@ -101,7 +106,7 @@ ToleranceResult measureToTolerance(render::Renderer* renderer, const render::Sce
         }
         if (i == kLadderSize - 1) {  // nothing finer to check against: the model's word is all there is
             r.checkSetup = r.setup, r.check = r.measurement;
-            r.errorEstimate = r.predictedError;
+            r.errorEstimate = r.predictedError + lightError;
             r.met = r.errorEstimate <= t.tolerance;
             break;
         }
@@ -112,12 +117,12 @@ ToleranceResult measureToTolerance(render::Renderer* renderer, const render::Sce
         const double ratio = double(kLadder[k]) / kLadder[i];
         const double diff = std::abs(r.measurement.shape.aspect - r.check.shape.aspect);
         const double shrink = 1.0 - std::pow(1.0 / ratio, order);
-        r.errorEstimate = diff / shrink;
+        r.errorEstimate = diff / shrink + lightError;
         r.met = r.errorEstimate <= t.tolerance;
         if (r.met) break;
         // Escalate with the constant the check measured (never below the model's).
         const double p = minorPixels(t.base, kLadder[i], e);
-        c = std::max(c, r.errorEstimate * std::pow(p, order));
+        c = std::max(c, (r.errorEstimate - lightError) * std::pow(p, order));
         i = chooseSize(t.base, e, t.tolerance / kSafety, k, c, order);
     }
     r.rounds = std::min(r.rounds, kRounds);

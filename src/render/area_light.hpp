@@ -33,6 +33,7 @@ struct LightCap {
     dvec3 center{0, 0, 1};         ///< unit, towards the cap's centre
     dvec3 a{1, 0, 0}, b{0, 1, 0};  ///< tangent frame at the centre: a points down (a.z <= 0), b is horizontal
     double halfAngle = 0;          ///< alpha (rad)
+    double uMax = 0;               ///< 1 - cos(alpha), without the cancellation of small caps
     double radiance = 0;           ///< L
 };
 
@@ -40,6 +41,8 @@ struct LightCap {
 LightCap lightCap(const Light& light, const dvec3& p);
 /// 1 - cos(beta_max): the cap's radial extent toward tangent azimuth phi (from a towards b), cut by the horizon.
 double capEdge(const LightCap& cap, double phi);
+/// 1 - cos(beta_h): where the horizon ends a ray from a cap centre of height cz, k = cos(phi) a.z (2: never).
+double horizonEdge(double cz, double k);
 /// The visible fraction of the cap's solid angle (1 unless the horizon cuts it: a disk near grazing).
 double capVisibleFraction(const LightCap& cap);
 

@@ -215,7 +215,7 @@ void setAreaLightUniforms(const gl::Program& prog, const Scene& scene) {
     const LightCap cap = lightCap(scene.light, scene.light.position());  // L (and the disk's cap) hold everywhere
     prog.set("uCapRadiance", float(cap.radiance));
     if (scene.light.type == LightType::Sphere) prog.set("uLightRadius", float(scene.light.radius));
-    else prog.set("uCapHalfAngle", float(cap.halfAngle));
+    else prog.set("uCapU", float(cap.uMax));
 }
 
 }  // namespace

@@ -123,6 +123,10 @@ std::vector<Case> flagCases() {
         {"--gl-backend", {"bogus"}},
         {"--gpu", {"-1", "1.5", "''", "1023", "x"}},  // 1023: within the registry, beyond any machine's EGL devices
         {"--tint", {"1,2", "1,2,3,4", "nan", "-1"}},
+        {"--light", {"bogus", "area", "''"}},
+        {"--light-radius", {"0", "-1", "-0", "nan", "inf", "''"}},  // a sphere has a size: zero or negative is no sphere
+        {"--light-angle", {"0", "90", "91", "-1", "nan", "''"}},     // an angular radius in (0, 90)
+        {"--light-rings", {"0", "33", "1.5", "-1", "automatic", "''"}},
     };
     for (const auto& [flag, values] : numbers)
         for (const auto& v : values) cases.push_back({measure + flag + " " + v, 2, flag});
@@ -130,6 +134,12 @@ std::vector<Case> flagCases() {
     cases.push_back({"render --size 32 --exposure nan -o {d}/new.png", 2, "--exposure"});
     cases.push_back({"render --size 32 --view bogus -o {d}/new.png", 2, "--view"});
     cases.push_back({"measure --bogus-flag 1", 2, "--bogus-flag"});
+    // A sphere that reaches the plane, at any angle of the sweep (its centre 10 cos 80 = 1.74 above it).
+    cases.push_back({measure + "--light sphere --light-radius 2 --incidence 0:85:5", 2,
+                     "--light-radius: a sphere of radius 2 at distance 10 and incidence 80 deg reaches the plane"});
+    cases.push_back({"render --size 32 --light sphere --light-radius 10 -o {d}/existing.png", 2, "reaches the plane"});
+    cases.push_back({measure + "--light disk --bumps explicit", 2, "--light disk: not with --bumps explicit"});
+    cases.push_back({measure + "--light sphere --brdf {d}/ok.brdf", 2, "--light sphere: not with --brdf"});
     cases.push_back({"run {d}/tiny.toml --shard 1/2x -o {d}/sh", 2, "--shard"});
     cases.push_back({"run {d}/tiny.toml --shard 0/0 -o {d}/sh", 2, "--shard"});
     cases.push_back({"run ''", 2, "empty experiment name"});
@@ -156,6 +166,8 @@ std::vector<Case> sceneCases(Scratch& s) {
         {"[light]\nincidence = 100\n", ":2"},
         {"[light]\nincidence = \"0:90:inf\"\n", ":2"},
         {"[light]\nroughness = 0.1\n", ":2: light.roughness"},
+        {"[light]\nlight = \"sphere\"\nlight_radius = 9\nincidence = 60\n", ":3: light.light_radius: a sphere of radius 9"},
+        {"[light]\nlight = \"disk\"\nlight_angle = 90\n", ":3: light.light_angle: must be a finite number in (0, 90)"},
         {"[camera]\nsize = 0\n", ":2"},
         {"[camera]\nsize = \"16385\"\n", ":2"},
         {"[surface]\nbump_seed = 9007199254740993\n", ":2"},
