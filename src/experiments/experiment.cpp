@@ -503,12 +503,19 @@ SweepAxis sheetAxis(const Fields& f, const std::string& keyName, const std::stri
 
 void parseSheet(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
     if (const auto* sheet = table(doc, path, "contact_sheet")) {
-        const Fields f(*sheet, path, "contact_sheet", {"file", "size", "row_key", "rows", "column_key", "columns"});
+        const Fields f(*sheet, path, "contact_sheet", {"file", "size", "fov", "row_key", "rows", "column_key", "columns"});
         e.sheetFile = f.outputFile("file", e.sheetFile);
         names.claim(e.sheetFile, f.at("file"));
         if (const toml::node* size = f.node("size"))  // "512x256" or 256, as in a scene file's [camera]
             if (!(size->is_string() || size->is_integer()) || !scene::valueText(*size, e.sheetSize))
                 f.fail("size", "expected a size, 256 or \"256x192\" (got " + typeName(*size) + ")");
+        if (const toml::node* fov = f.node("fov")) {  // the photo views' field of view, as camera.fov takes it
+            std::string text;
+            if (!(fov->is_string() || fov->is_number()) || !scene::valueText(*fov, text))
+                f.fail("fov", "expected auto or a number in (0, 179] (got " + typeName(*fov) + ")");
+            if (const std::string err = scene::check(*scene::find("fov"), text); !err.empty()) f.fail("fov", err);
+            e.sheetFov = text;
+        }
         const SweepAxis rows = sheetAxis(f, "row_key", "material.model", "rows");
         const SweepAxis cols = sheetAxis(f, "column_key", "light.incidence", "columns");
         e.sheetRowKey = rows.key, e.sheetColumnKey = cols.key;
@@ -523,6 +530,7 @@ void parseSheet(const toml::table& doc, const std::string& path, Experiment& e, 
                 scene::Values v = e.base;
                 v.merge(r);
                 v.merge(c);
+                if (!e.sheetFov.empty()) v.set("fov", e.sheetFov, f.at("fov"));
                 if (scene::resolve(v).angles.size() != 1)
                     throw InputError(v.where("incidence") + ": one angle per contact sheet tile");
             }

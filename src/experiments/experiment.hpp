@@ -54,6 +54,7 @@ struct Experiment {
     bool matching = false;        ///< [match] present
     std::vector<PlotSpec> plots;
     std::string sheetFile = "contact_sheet.png", sheetRowKey, sheetColumnKey, sheetSize = "256x192";
+    std::string sheetFov;  ///< [contact_sheet] fov: the photo views' field of view ("" = the view's default, 40 deg)
     std::vector<std::string> sheetRows, sheetColumns;
     std::vector<scene::Values> sheetRowValues, sheetColumnValues;
     std::vector<std::pair<std::string, std::string>> strips;  ///< [[strip]]: material, PNG file

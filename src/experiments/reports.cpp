@@ -57,6 +57,7 @@ bool contactSheet(ExperimentRunner& runner, const std::string& dir) {
             scene::Values values = e.base;
             values.merge(e.sheetRowValues[size_t(ri)]);
             values.merge(e.sheetColumnValues[size_t(ci)]);
+            if (!e.sheetFov.empty()) values.set("fov", e.sheetFov, e.path + ": contact_sheet.fov");
             nlohmann::json ignored;
             runner.applyMatch(values, ignored);
             const ImageF tile = runner.photo(values, tw, th);

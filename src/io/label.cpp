@@ -14,8 +14,10 @@
 namespace hilite::io {
 
 void drawText(ImageF& img, int x, int yTop, const std::string& text, int scale, float value) {
-    // stb_easy_font: 4 vertices (x, y, z, colour: 16 bytes) per quad, y down, about 270 bytes a character.
-    std::vector<char> buffer(text.size() * 300 + 64);
+    // stb_easy_font: 4 vertices (x, y, z, colour: 16 bytes) per quad, y down. Its "about 270 bytes a character"
+    // is an average: a '0' takes 8 quads (512 bytes), and a full buffer silently drops the rest ("30" drew as
+    // "3" and half a "0"). No glyph has more than 30 segments: 30 quads a character always fit.
+    std::vector<char> buffer(text.size() * 30 * 64 + 64);
     std::string copy = text;
     const int quads = stb_easy_font_print(0, 0, copy.data(), nullptr, buffer.data(), int(buffer.size()));
     for (int q = 0; q < quads; ++q) {
