@@ -120,8 +120,13 @@ void ExperimentRunner::applyMatch(scene::Values& values, nlohmann::json& row) {
 const measure::Shape& ExperimentRunner::reference(const Configuration& c, scene::Values values) {
     values.merge(c.reference);
     const scene::Resolved r = scene::resolve(values);
-    std::ostringstream key;  // the scene and the threshold define the reference; the settings do not
-    key << r.scene << " incidence=" << r.angles.front() << " threshold=" << r.setup.options.threshold;
+    // The scene and the threshold define the reference; the settings do not, nor the GL rule over a light with size
+    // (the reference integrates it exactly).
+    render::Scene exact = r.scene;
+    exact.light.rings = 0;
+    exact.light.ruleTarget = render::Light{}.ruleTarget;
+    std::ostringstream key;
+    key << exact << " incidence=" << r.angles.front() << " threshold=" << r.setup.options.threshold;
     auto it = m_references.find(key.str());
     if (it == m_references.end())
         it = m_references.emplace(key.str(), measurement::measureReference(r.scene, r.setup.options).shape).first;
