@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -80,6 +81,10 @@ TEST_CASE("render::Renderer a disk light's pixels equal the exact twin within 1e
         MESSAGE(c.what << ": 8 rings, GL vs exact twin " << t.maxRelError << " over " << t.compared << " pixels; at the "
                        << render::lightRings(automatic) << " rings chosen for 1e-3 of the peak: " << a.maxRelError);
         CHECK(t.compared > 500);
+        const auto effects = render::activeEffects(c.scene);  // explain names the light and its rule
+        CHECK(std::any_of(effects.begin(), effects.end(), [](const std::string& e) {
+            return e.find(" light ") != std::string::npos && e.find("GL rule 8 rings") != std::string::npos;
+        }));
         CHECK(t.allFinite);
         CHECK(t.maxRelError < 1e-4);
     }
@@ -161,4 +166,34 @@ TEST_CASE("measurement::measureGl diagnoses: a rule too sparse for the lobe, and
     // A perfect mirror reflects the sun's image, which no quadrature of a delta can draw: named, not measured.
     render::Scene mirror = withDisk(ggx(0.0, 60), 0.266);
     CHECK(measureShape(mirror, 64).has(measure::Flag::Mirror));
+}
+
+TEST_CASE("measurement::measureGl extreme lights: a disk centred on the horizon, a sphere almost touching the plane") {
+    auto& env = test::glEnv();
+    // Half of a 2 deg disk lies below the horizon at theta_i = 90 deg: the rule cuts each ray there (its kink in
+    // azimuth makes it converge algebraically), the exact twin integrates the visible half.
+    render::Scene horizon = withDisk(ggx(0.3, 90), 2.0, 16);
+    CHECK(render::capVisibleFraction(render::lightCap(horizon.light, dvec3(0.0))) == doctest::Approx(0.5).epsilon(1e-5));
+    const PinholeCamera cam = measurement::measurementCamera(horizon, horizon.light.chart().wr(), 60.0, 32, 32);
+    ImageF gl, cpu;
+    env.renderer->render(horizon, cam, render::Output::Measure, gl);
+    render::renderMeasureCpu(horizon, cam, cpu);
+    const test::TwinComparison exact = test::compareWithTwin(*env.renderer, horizon, cam);
+    MESSAGE("2 deg disk centred on the horizon at 16 rings: GL vs CPU rule " << maxRelative(gl, cpu)
+                                                                            << ", GL vs exact " << exact.maxRelError);
+    CHECK(maxRelative(gl, cpu) < 1e-4);
+    CHECK(exact.maxRelError < 2e-3);
+    const measure::Shape h = measureShape(horizon, 128);
+    CHECK(h.peak > 0);
+    CHECK(std::isfinite(h.aspect));
+    CHECK(!h.has(measure::Flag::NoHighlight));
+    // A sphere of radius 1.7 whose centre is 1.74 above the plane: from below it the cap is 78 deg wide, a GGX 0.1
+    // lobe a few degrees across inside it, far between 16 rings' nodes: named, not measured silently.
+    render::Scene sphere = ggx(0.1, 80);
+    sphere.light.type = render::LightType::Sphere;
+    sphere.light.radius = 1.7;
+    sphere.light.rings = 4;
+    const render::RuleCheck rule = render::lightRule(sphere);
+    MESSAGE("sphere R 1.7 at 80 deg, 4 rings: rule error " << rule.error << " of the peak");
+    CHECK(measureShape(sphere, 64).has(measure::Flag::LightUndersampled));
 }

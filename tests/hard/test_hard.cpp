@@ -38,7 +38,8 @@ void checkMeasurement(const measure::Shape& s, const std::vector<measure::Flag>&
 bool comparable(const measure::Shape& s) {
     using measure::Flag;
     for (Flag f : {Flag::Clipped, Flag::UnderResolved, Flag::NoHighlight, Flag::CoversFrame, Flag::Mirror,
-                   Flag::EffectivelyMirror, Flag::UnboundedAtHorizon, Flag::NotStarShaped, Flag::NotConverged})
+                   Flag::EffectivelyMirror, Flag::UnboundedAtHorizon, Flag::NotStarShaped, Flag::NotConverged,
+                   Flag::LightUndersampled})
         if (s.has(f)) return false;
     return true;
 }
