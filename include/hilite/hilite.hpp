@@ -49,6 +49,7 @@
 #include "measurement/measure_scene.hpp"
 #include "measurement/row.hpp"
 #include "measurement/session.hpp"
+#include "render/area_light.hpp"
 #include "render/renderer.hpp"
 #include "render/scene.hpp"
 #include "scene/registry.hpp"
