@@ -43,7 +43,7 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 /// The observer under D65 at 1 nm over 360..830 nm: the weights M (xbar, ybar, zbar) D65, not yet
 /// normalized, and the sum of ybar D65 (the Y of the white).
 struct Observer {
-    std::vector<dvec3> rgb;
+    std::vector<dvec3> rgb, xyz;
     double ySum = 0.0;
 };
 
@@ -59,6 +59,7 @@ Observer observer(const std::string& dataDir) {
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) rgb[r] += kXyzToSrgb[r][c] * xyz[c];
         o.rgb.push_back(rgb);
+        o.xyz.emplace_back(xyz[0], xyz[1], xyz[2]);
         o.ySum += xyz[1];
     }
     return o;
@@ -84,11 +85,13 @@ std::shared_ptr<const Spectrum> buildSpectrum(const std::string& dataDir, const 
     // the bins partition 360..830 nm and the weights keep their sum.
     const Observer o = observer(dataDir);
     s->weight.assign(s->size(), dvec3(0.0));
+    s->xyzWeight.assign(s->size(), dvec3(0.0));
     dvec3 sum(0.0);
     for (size_t r = 0; r < o.rgb.size(); ++r) {
         const double nm = kCmfFirstNm + double(r);
         const double i = std::clamp(std::round((nm - first) / stepNm), 0.0, double(s->size() - 1));
         s->weight[size_t(i)] += o.rgb[r];
+        s->xyzWeight[size_t(i)] += o.xyz[r] / o.ySum;
         sum += o.rgb[r];
     }
     s->whiteBeforeNormalization = sum / o.ySum;

@@ -34,6 +34,7 @@ struct Spectrum {
     std::string name;                                     ///< "copper" or "gold"
     std::vector<double> lambdaNm, eta, k;                 ///< per sample
     std::vector<dvec3> weight;                            ///< linear sRGB weight per sample; each channel sums to 1
+    std::vector<dvec3> xyzWeight;                         ///< CIE XYZ weight per sample under D65; Y sums to 1
     dvec3 whiteBeforeNormalization{1.0};                  ///< sum of the weights before the per-channel division
     std::vector<double> tableLambdaNm, tableEta, tableK;  ///< the measured table itself
 
