@@ -283,13 +283,17 @@ Action addBrdf(CLI::App& app) {
     tabulate->footer("brdf::evaluate (lobe with F and G, diffuse) at every bin centre; bins whose centre puts a "
                      "direction below the horizon hold -1 (no data).");
 
+    const auto [bounces, runBounces] = addBrdfBounces(app);
+
     app.footer(
         "Examples: hilite brdf fresnel --material copper --incidence 0:90:5\n"
         "          hilite brdf albedo --model ggx --roughness 0.3 --geometry smith --json\n"
         "          hilite brdf normalization --model beckmann --roughness 0.02,0.1,1\n"
         "          hilite brdf strip --material gold -o gold.png\n"
-        "          hilite brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick -o ggx.binary");
-    return [=] {
+        "          hilite brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick -o ggx.binary\n"
+        "          hilite brdf bounces --roughness 0.6 --material gold --incidence 0,60");
+    return [=, bounces = bounces, runBounces = runBounces] {
+        if (bounces->parsed()) return runBounces();
         if (albedo->parsed()) return runAlbedo(*fa);
         if (fresnel->parsed()) return runFresnel(*ff);
         if (normalization->parsed()) return runNormalization(*fn);

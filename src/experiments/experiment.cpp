@@ -409,6 +409,39 @@ void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     e.fit = o;
 }
 
+/// [bounces]: the settings of the studies, each checked where it is written, and the colour picture's name.
+void parseBounces(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
+    const auto* t = table(doc, path, "bounces");
+    if (!t) return;
+    const Fields f(*t, path, "bounces", {"paths", "batches", "seed", "surface", "texels", "bumps_per_tile", "colours"});
+    BounceSettings s;
+    s.options.paths = wholeNumber(f, "paths", 2, 100000000, int(s.options.paths));
+    s.options.batches = wholeNumber(f, "batches", 2, 1000, s.options.batches);
+    s.options.seed = uint64_t(wholeNumber(f, "seed", 0, 2147483647, int(s.options.seed)));
+    const std::string surface = f.string("surface", micro::toString(s.options.surface));
+    const auto kind = micro::parseTracedSurface(surface);
+    if (!kind) f.fail("surface", "'" + printable(surface) + "' is not a traced surface (allowed: hermite, bilinear)");
+    s.options.surface = *kind;
+    s.texels = wholeNumber(f, "texels", 64, 4096, s.texels);
+    s.bumpsPerTile = wholeNumber(f, "bumps_per_tile", 1, 512, s.bumpsPerTile);
+    try {
+        checkBounceSettings(s, false);
+    } catch (const InputError& err) {  // "paths: ..." names the key
+        const std::string m = err.what();
+        const auto colon = m.find(": ");
+        f.fail(m.substr(0, colon), m.substr(colon + 2));
+    }
+    if (f.node("colours")) {
+        e.bounceColoursFile = f.outputFile("colours", "");
+        names.claim(e.bounceColoursFile, f.at("colours"));
+    }
+    for (const char* other : {"match", "reference", "timing", "pareto", "fit"})
+        if (doc.contains(other))
+            throw InputError(path + ": [" + std::string(other) + "]: not with [bounces] (a bounce row traces light "
+                                                                 "paths; it measures no highlight)");
+    e.bounces = s;
+}
+
 void parseErrorTables(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
     if (const auto* ref = table(doc, path, "reference")) e.referenceErrors = Fields(*ref, path, "reference", {"errors"}).boolean("errors", true);
     if (const auto* timing = table(doc, path, "timing")) {
@@ -441,7 +474,8 @@ namespace {
 /// Every top-level table must be one an experiment has.
 void checkTables(const toml::table& doc, const std::string& path) {
     static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
-                                                     "contact_sheet", "strip", "summary", "reference", "timing", "pareto", "fit"};
+                                                     "contact_sheet", "strip", "summary", "reference", "timing", "pareto", "fit",
+                                                     "bounces"};
     for (const auto& [k, v] : doc) {
         const std::string name(k.str());
         if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
@@ -595,6 +629,8 @@ std::vector<std::string> rowColumns(const Experiment& e) {
         for (const std::string& m : e.fit->models)
             for (const char* c : {"_residual", "_rank", "_params"}) add(m + c);
     }
+    if (e.bounces)
+        for (const auto& c : bounceColumns()) add(c);
     return out;
 }
 
@@ -673,6 +709,7 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
     parseSummary(doc, path, e);
     parseErrorTables(doc, path, e, names);
     parseFit(doc, path, e);
+    parseBounces(doc, path, e, names);
     checkFields(e, doc);
     return e;
 }
@@ -725,7 +762,9 @@ Configurations Experiment::configurations() const {
         all.merge(c.reference);
         if (fit)  // a fit sweeps the incidences itself: its target's and models' scenes checked now
             checkFitScenes(all, *fit);
-        else if (scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
+        else if (bounces && resolveBounceScene(all).angles.size() != 1)
+            throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
+        else if (!bounces && scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
             throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
         if ((i & 1023) == 0 || i + 1 == configs.size()) {
             const auto now = std::chrono::steady_clock::now();

@@ -3,6 +3,7 @@
 // scene file), [[sweep]] axes (key + values or range), optional [match] (lobe widths matched at normal
 // incidence), [[plot]], [contact_sheet] and [summary]. See experiments/*.toml and the README.
 
+#include "experiments/bounces.hpp"
 #include "experiments/fit.hpp"
 #include "experiments/pareto.hpp"
 #include "experiments/plot.hpp"
@@ -69,6 +70,10 @@ struct Experiment {
     std::vector<ParetoSpec> pareto;
     /// [fit]: each configuration is a fit target (experiments/fit.hpp), its row the ranking of the models.
     std::optional<FitOptions> fit;
+    /// [bounces]: each configuration is a bounce study (experiments/bounces.hpp), its row energy and colour per
+    /// bounce order; `colours` names the PNG of each order's colour ("" = none).
+    std::optional<BounceSettings> bounces;
+    std::string bounceColoursFile;
 
     /// Every configuration, validated (a bad value anywhere fails before anything runs); validation longer
     /// than a second reports its progress on stderr.
@@ -138,6 +143,8 @@ public:
     void applyMatch(scene::Values& values, nlohmann::json& row);
     /// [fit]: the configuration is a fit target; its row ranks the models (experiments/fit.hpp).
     nlohmann::json fitRow(const scene::Values& values, nlohmann::json& row);
+    /// [bounces]: the configuration is a bounce study; its row holds the study's fields.
+    nlohmann::json bounceRow(const scene::Values& values, nlohmann::json& row);
     /// A photo view of the scene `values` resolve to (the contact sheet's tiles).
     ImageF photo(const scene::Values& values, int width, int height);
     const Experiment& experiment() const { return m_exp; }

@@ -55,6 +55,8 @@ ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backe
         m_columns.insert(m_columns.end(), {"ref_aspect", "ref_major_deg", "ref_minor_deg", "aspect_error",
                                            "major_error", "minor_error"});
     if (e.timing) m_columns.insert(m_columns.end(), {"time_ms", "repeats", "error_estimate"});
+    if (e.bounces)
+        for (const auto& c : bounceColumns()) m_columns.push_back(c);
     if (e.matching) {
         scene::Values target = e.base;
         target.merge(e.match);
@@ -140,6 +142,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     for (const auto& [k, v] : c.tags.items()) row[k] = v;
     scene::Values values = c.values;
     if (m_exp.fit) return fitRow(values, row);
+    if (m_exp.bounces) return bounceRow(values, row);
     applyMatch(values, row);
     const scene::Resolved r = scene::resolve(values);
     if (r.angles.size() != 1)
@@ -188,6 +191,16 @@ nlohmann::json ExperimentRunner::fitRow(const scene::Values& values, nlohmann::j
         }
     }
     row["fit_time_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    nameNonFinite(row);
+    return row;
+}
+
+nlohmann::json ExperimentRunner::bounceRow(const scene::Values& values, nlohmann::json& row) {
+    const std::vector<BounceStudy> studies = studyBounces(values, *m_exp.bounces);  // one angle: validated
+    const nlohmann::json columns = scene::parameterColumns(resolveBounceScene(values));
+    const nlohmann::json fields = bounceFields(studies.front());
+    for (auto& [k, v] : columns.items()) row[k] = v;
+    for (auto& [k, v] : fields.items()) row[k] = v;
     nameNonFinite(row);
     return row;
 }

@@ -213,6 +213,15 @@ void writeReports(ExperimentRunner& runner, const std::string& dir, const Rows& 
                << " (left to right, values above); each tile is exposed to its own peak.\n\n";
     for (const auto& s : e.sections) out.md << (s == "shape" ? shapeSection(e, rows) : microSummary(rows));
     if (e.fit) out.md << fitSection(e, rows);
+    if (e.bounces) {
+        if (!e.bounceColoursFile.empty()) {
+            writeBounceColours(rows, dir + "/" + e.bounceColoursFile);
+            out.md << "![colour of each bounce order](" << e.bounceColoursFile << ")\n\nThe colour of each bounce "
+                      "order's light (its mean Fresnel product, linear sRGB written sRGB-encoded), a row per result row: "
+                      "orders 1, 2, 3 and >= 2 traced on the height field, and Kulla-Conty's F_ms.\n\n";
+        }
+        out.md << bounceSection(rows);
+    }
     for (const auto& spec : e.pareto) {
         const auto points = paretoPoints(spec, rows);
         std::string why;
