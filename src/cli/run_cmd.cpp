@@ -18,7 +18,7 @@ namespace {
 
 struct RunFlags {
     std::string experiment, out, shard;
-    bool resume = false;
+    bool resume = false, check = false;
     std::string backend;
 };
 
@@ -34,9 +34,14 @@ void progress(size_t done, size_t total, double seconds) {
 int runExperiment(const RunFlags& f) {
     experiments::RunOptions o;
     experiments::parseShard(f.shard, o.shardK, o.shardN);
-    o.experiment = f.experiment, o.out = f.out, o.resume = f.resume, o.backend = f.backend;
+    o.experiment = f.experiment, o.out = f.out, o.resume = f.resume, o.backend = f.backend, o.check = f.check;
     o.progress = progress;
     const experiments::RunSummary s = experiments::runExperiment(o);
+    if (f.check) {
+        std::cout << s.name << ": " << s.configurations << " configurations, every one valid (checked only: nothing "
+                  << "measured, nothing written to " << s.dir << ")\n";
+        return 0;
+    }
     if (!s.finalized) {
         std::cout << "shard " << o.shardK << "/" << o.shardN << ": " << s.measured << " rows in " << s.seconds << " s -> "
                   << s.dir << "/results.jsonl (join the shards with hilite merge)\n";
@@ -69,6 +74,9 @@ Action addRun(CLI::App& app) {
     app.add_flag("--resume", f->resume, "keep the completed rows already in the output folder and run the rest");
     app.add_option("--shard", f->shard, "run only configurations i with i mod N = K-1 (K/N, 1-based)");
     app.add_option("--gl-backend", f->backend, "auto | osmesa | egl | egl-device");
+    app.add_flag("--check", f->check,
+                 "check the file, every configuration and the output folder as a run does first, then stop: nothing "
+                 "measured or written");
     app.footer("Example: hilite run eccentricity   (writes results/eccentricity/)");
     return [f] { return runExperiment(*f); };
 }

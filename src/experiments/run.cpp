@@ -68,6 +68,10 @@ RunSummary runExperiment(const RunOptions& o) {
     ExperimentRunner runner(exp, o.backend);
     runner.probeAll(configs, o.shardK, o.shardN);  // a .brdf that does not build or runs too long: nothing written
     checkResultFolder(s.dir, o.outName);
+    if (o.check) {
+        s.configurations = configs.size();
+        return s;
+    }
     io::makeOutputDir(s.dir, o.outName);  // only now: bad input leaves not even an empty folder behind
     const io::FolderLock lock(s.dir, o.outName);  // a second run or merge into this folder is refused, not mixed in
     ResultsWriter writer(s.dir, runner.columns(), o.resume, exp, configs);

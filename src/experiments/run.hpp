@@ -17,6 +17,9 @@ struct RunOptions {
     int shardK = 1, shardN = 1;   ///< configurations i with i mod N = K - 1
     std::string backend;          ///< "" = $HILITE_GL_BACKEND, else auto
     std::string outName = "-o";   ///< how messages name the output folder (the flag, or a keyword)
+    /// Only check: the file, every configuration, every .brdf it names and the output folder, as a run does
+    /// before it writes; then return, nothing measured or written (RunSummary::configurations says how many).
+    bool check = false;
     /// Called after each row (rows measured now, rows to measure now, seconds so far); may be empty.
     std::function<void(size_t, size_t, double)> progress;
 };

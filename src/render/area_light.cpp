@@ -184,6 +184,44 @@ CapIntegral capExact(const LightCap& cap, const dvec3& q, double width, const st
     return out;
 }
 
+CapIntegral capCentred(const LightCap& cap, const std::function<dvec3(const dvec3&)>& g) {
+    CapIntegral out;
+    if (!(cap.uMax > 0)) return out;
+    const double scale = quadratureNorm(capRule(cap, 4, g)), relTol = kExactTolerance;
+    // Along azimuth phi, rho = 2 sin(beta / 2) runs to sqrt(2 u_max(phi)); u = rho^2 / 2 and du = rho drho, so
+    // g rho is smooth in rho (polynomial terms in the tangent coordinates), unlike g in u (square roots at 0).
+    auto ray = [&](double phi) -> dvec3 {
+        const double rhoMax = std::sqrt(2.0 * capEdge(cap, phi));
+        const dvec3 d = std::cos(phi) * cap.a + std::sin(phi) * cap.b;
+        auto f = [&](double rho) -> dvec3 {
+            const double u = 0.5 * rho * rho;
+            return rho * g((1.0 - u) * cap.center + std::sqrt(u * (2.0 - u)) * d);
+        };
+        const auto r = integrateAdaptive<dvec3>(f, 0.0, rhoMax, relTol, 1e-3 * relTol * scale);
+        out.evaluations += r.evaluations;
+        out.converged = out.converged && r.converged;
+        return r.value;
+    };
+    // The horizon cuts the rays with cos(phi) > c.z cot(alpha) / sin(theta_c) (a.z = -sin(theta_c)): the kinks
+    // of u_max(phi) are panel edges, so the integrand in phi is smooth on each panel.
+    std::vector<double> edges{0.0, kPi, 2.0 * kPi};
+    const double sinTheta = -cap.a.z;
+    if (sinTheta > 0 && cap.halfAngle < 0.5 * kPi) {
+        const double x = cap.center.z / std::tan(cap.halfAngle) / sinTheta;
+        if (x > -1.0 && x < 1.0) {
+            const double p = std::acos(x);
+            edges = {-p, p, 2.0 * kPi - p};
+        }
+    }
+    for (size_t k = 0; k + 1 < edges.size(); ++k) {
+        const auto r = integrateAdaptive<dvec3>(ray, edges[k], edges[k + 1], relTol, relTol * scale);
+        out.value += r.value;
+        out.evaluations += r.evaluations;
+        out.converged = out.converged && r.converged;
+    }
+    return out;
+}
+
 namespace {
 
 /// Where the lobe of f(., we) peaks in wi: the mirror image of we (microfacet and reflection lobes, tables
@@ -220,6 +258,8 @@ dvec3 areaRadianceExact(const Scene& s, const dvec3& p, const dvec3& we) {
             if (quadratureNorm(next - previous) <= kExactTolerance * quadratureNorm(next)) return next;
             previous = next;
         }
+        // The rule stalls on the horizon's kink: the same smooth lobe integrated with the kinks as panel edges.
+        if (cap.center.z < std::sin(cap.halfAngle)) return capCentred(cap, g).value;
     }
     return capExact(cap, q, width, g).value;
 }

@@ -63,6 +63,9 @@ struct CapIntegral {
     bool converged = true;
 };
 CapIntegral capExact(const LightCap& cap, const dvec3& q, double width, const std::function<dvec3(const dvec3&)>& g);
+/// int_cap g(wi) dwi exactly (to kExactTolerance) for g smooth over the cap: its own polar coordinates, the
+/// horizon's kinks in azimuth as panel edges (cheaper than capExact where no lobe is sharp inside the cap).
+CapIntegral capCentred(const LightCap& cap, const std::function<dvec3(const dvec3&)>& g);
 
 /// Reflected radiance toward we from the plane point p under the scene's sphere or disk light: exact, or by the
 /// GL rule of n rings.
