@@ -138,6 +138,21 @@ void BM_Draw(benchmark::State& state) {
 }
 BENCHMARK(BM_Draw)->RangeMultiplier(2)->Range(128, 2048)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+/// The final render of an auto-framed 512^2 measurement alone: a 438 x 234 crop (102k pixels, what
+/// BM_MeasureAutoFramed/512/1 shades at 60 deg), and the 64^2 aiming render (arg 0).
+void BM_DrawCrop(benchmark::State& state) {
+    const render::Scene s = ggx(60);
+    const bool aim = state.range(0) == 0;
+    const PinholeCamera cam = frameOf(s, aim ? 64 : 512);
+    const PixelRect crop = aim ? PixelRect{} : PixelRect{37, 139, 438, 234};
+    ImageF img;
+    env().renderer->render(s, cam, render::Output::Measure, img, dvec2(0.0), crop);
+    for (auto _ : state) env().renderer->render(s, cam, render::Output::Measure, img, dvec2(0.0), crop);
+    pixelRate(state, aim ? 64.0 * 64.0 : 438.0 * 234.0);
+    state.SetLabel(aim ? "64^2 aim, draw + readback" : "512^2 final crop, draw + readback");
+}
+BENCHMARK(BM_DrawCrop)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_Readback(benchmark::State& state) {
     const int size = int(state.range(0));
     const render::Scene s = ggx(60);

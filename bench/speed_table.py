@@ -32,13 +32,15 @@ BENCHMARKS = [
      "analysis, diagnoses), in-process", "BM_MeasureAutoFramed/512/1/real_time", None),
     ("the same without the crop (whole 512² frame)", "BM_MeasureAutoFramed/512/0/real_time", None),
     ("`--tolerance 1e-3` (GGX α 0.1 at 60°), in-process", "BM_Tolerance/0/real_time", None),
+    ("its two renders alone (draw + readback): the 64² aim / the final 102k-pixel crop of 512²",
+     ["BM_DrawCrop/0/real_time", "BM_DrawCrop/1/real_time"], None),
     ("draw 512² / 2048²", ["BM_Draw/512/real_time", "BM_Draw/2048/real_time"], None),
     ("analysis (sub-pixel boundary) 512² / 2048²", ["BM_Analysis/512/1", "BM_Analysis/2048/1"], None),
     ("86 angles through the library (`Session::measure`, 0:85:1 at 512²)", "BM_SessionSweep86/real_time", None),
     ("`hilite fit`: 4 models × 18 angles × 5 thresholds at 256², a GGX 0.1 MERL table",
      "BM_Fit4Models/iterations:1/real_time", None),
 ]
-FILTER = "BM_MeasureAutoFramed/512/|BM_Tolerance/0|BM_Draw/(512|2048)|BM_Analysis/(512|2048)/1|BM_SessionSweep86|BM_Fit4Models"
+FILTER = "BM_MeasureAutoFramed/512/|BM_Tolerance/0|BM_DrawCrop|BM_Draw/(512|2048)|BM_Analysis/(512|2048)/1|BM_SessionSweep86|BM_Fit4Models"
 
 
 def fail(msg):
@@ -124,10 +126,16 @@ def main(argv=None):
     sweep = [hilite, "measure", "--model", "ggx", "--roughness", "0.1", "--geometry", "smith", "--fresnel", "schlick",
              "--f0", "0.04", "--size", "512", "--incidence", "0:85:1", "--json"]
     one = sweep[:-3] + ["--incidence", "60", "--json"]
+    half = sweep[:-3] + ["--incidence", "0:85:0.5", "--json"]
     t_sweep = wall(sweep, args.repeats)
     t_one = wall(one, args.repeats)
+    t_half = wall(half, args.repeats)
     rows.append(("`hilite measure` one angle (60°), whole process incl. start-up (no shader cache)", fmt_ms(t_one)))
     rows.append(("`hilite measure --incidence 0:85:1 --size 512`, whole process", fmt_ms(t_sweep)))
+    # What a further angle costs a process (171 angles against 86), beside what it costs in-process.
+    in_process = med["BM_SessionSweep86/real_time"] / 86
+    rows.append(("each further angle of a whole process (0:85:0.5 against 0:85:1) / in-process (`Session`)",
+                 f"{fmt_ms((t_half - t_sweep) / 85)} / {fmt_ms(in_process)}"))
     sys.path.insert(0, HERE)
     import numpy as np  # noqa: E402 (the baseline's own dependency)
     import numpy_baseline  # noqa: E402

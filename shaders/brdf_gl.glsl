@@ -174,12 +174,24 @@ vec3 measuredBrdf(vec3 wi, vec3 wo) {
 // (src/brdf/spectral.hpp, kFresnelTableSize: spaced evenly in sqrt(cos), denser toward grazing where F
 // bends most), linear between entries: within 1e-5 of F_Spectral for one lookup. Interpolated here, not by a
 // texture's filter, whose weights may have as few as 8 bits.
+#if defined(HILITE_OUTPUT_MEASURE)
+// The measurement reads only the luminance, and F enters it linearly (specular = s F): the entries'
+// luminances (uSpectralTableY) give the same L with one scalar gathered per entry instead of three
+// (llvmpipe gathers an indexed uniform lane by lane: copper's NDF + F at 512^2 cost 1.32x the NDF alone).
+uniform float uSpectralTableY[HILITE_SPECTRAL_TABLE_SIZE];
+vec3 F_SpectralTable(float cosTheta_i) {
+    float x = sqrt(clamp(cosTheta_i, 0.0, 1.0)) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
+    int i = min(int(x), HILITE_SPECTRAL_TABLE_SIZE - 2);
+    return vec3(mix(uSpectralTableY[i], uSpectralTableY[i + 1], x - float(i)));
+}
+#else
 uniform vec3 uSpectralTable[HILITE_SPECTRAL_TABLE_SIZE];
 vec3 F_SpectralTable(float cosTheta_i) {
     float x = sqrt(clamp(cosTheta_i, 0.0, 1.0)) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
     int i = min(int(x), HILITE_SPECTRAL_TABLE_SIZE - 2);
     return mix(uSpectralTable[i], uSpectralTable[i + 1], x - float(i));
 }
+#endif
 //@end
 
 //@block EnergyE

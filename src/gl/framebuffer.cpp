@@ -96,7 +96,12 @@ void Framebuffer::read(ImageF& out, const PixelRect& rect) const {
     const PixelRect r = rect.empty() ? PixelRect{0, 0, m_width, m_height} : rect;
     if (r.x < 0 || r.y < 0 || r.x + r.width > m_width || r.y + r.height > m_height)
         throw std::logic_error("Framebuffer::read: rectangle outside the framebuffer");
-    if (out.width != r.width || out.height != r.height || out.channels != 4) out = ImageF(r.width, r.height, 4);
+    // Reshaped in place: a sweep's crops differ in size each time, and a new image would be allocated and
+    // zeroed per render (a 4 MB memset at 512^2) only for glReadPixels to overwrite it.
+    if (out.width != r.width || out.height != r.height || out.channels != 4) {
+        out.width = r.width, out.height = r.height, out.channels = 4;
+        out.data.resize(size_t(r.width) * size_t(r.height) * 4);
+    }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, m_fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);

@@ -423,7 +423,9 @@ void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output ou
 }
 
 gl::Framebuffer& Renderer::framebuffer(int width, int height) {
-    constexpr size_t kKept = 3;  // coarse + final + one more; older ones are freed
+    // A row's measurement renders four sizes (aim and final, at the size and at half of it for the error
+    // estimate): with fewer kept, a sweep built and zeroed new framebuffers every angle. Older ones are freed.
+    constexpr size_t kKept = 6;
     for (size_t i = 0; i < m_fbos.size(); ++i)
         if (m_fbos[i]->width() == width && m_fbos[i]->height() == height) {
             std::rotate(m_fbos.begin(), m_fbos.begin() + long(i), m_fbos.begin() + long(i) + 1);

@@ -2,6 +2,7 @@
 
 #include "brdf/dispatch.hpp"
 #include "brdf/energy.hpp"
+#include "brdf/evaluate.hpp"
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
@@ -256,9 +257,14 @@ std::vector<TermUniform> termUniforms(const brdf::Params& p) {
         }
         u.push_back(etaK);
         u.push_back(weight);
-        TermUniform table{"uSpectralTable", 3, {}};
-        for (const dvec3& f : p.spectrum->fresnelTable()) table.values.insert(table.values.end(), {float(f.x), float(f.y), float(f.z)});
+        // Colour programs interpolate F; measurement programs its luminance (brdf_gl.glsl, F_SpectralTable).
+        TermUniform table{"uSpectralTable", 3, {}}, tableY{"uSpectralTableY", 1, {}};
+        for (const dvec3& f : p.spectrum->fresnelTable()) {
+            table.values.insert(table.values.end(), {float(f.x), float(f.y), float(f.z)});
+            tableY.values.push_back(float(brdf::luminance(f)));
+        }
         u.push_back(table);
+        u.push_back(tableY);
     }
     if (p.ndfTable) {  // the tabulated NDF's rows and its Smith projected areas
         TermUniform rows{"uNdfTable", 2, {}}, area{"uNdfProjectedArea", 1, {}};

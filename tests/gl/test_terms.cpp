@@ -3,6 +3,7 @@
 // program assembled with only the blocks it runs.
 
 #include "brdf/energy.hpp"
+#include "brdf/evaluate.hpp"
 #include "brdf/ndf_tables.hpp"
 #include "brdf/spectral.hpp"
 #include "gl_fixture.hpp"
@@ -158,6 +159,41 @@ TEST_CASE("render::Renderer every reflectance term matches its double twin withi
             worst[t.term] = std::max(worst[t.term], r.maxRelError);
         }
     for (const auto& [term, err] : worst) MESSAGE(term << ": worst GL vs twin relative error " << err);
+}
+
+// Measurement programs interpolate the spectral table's luminances (one gather per entry, not three): their
+// L must be the twin's luminance, with diffuse and multiple scattering added beside the specular term's F.
+TEST_CASE("render::Renderer the measurement output's spectral table: L is the twin's luminance within 1e-4") {
+    auto& env = test::glEnv();
+    const brdf::Params plain = withFresnel(base(Model::GGX, Geometry::Smith), Fresnel::Spectral, dvec3(1.0));
+    const brdf::Params full = withEnergy(plain, brdf::Multiscatter::KullaConty, Diffuse::Coupled);
+    for (const brdf::Params& p : {plain, full})
+        for (double incidence : {0.0, 45.0, 80.0}) {
+            render::Scene s;
+            s.brdf = p;
+            s.light.incidenceDeg = incidence;
+            const PinholeCamera cam = measureCamera(s, 50, 96, 64);
+            const ImageF img = env.renderer->render(s, cam, render::Output::Measure);
+            double peak = 0, worst = 0;
+            std::vector<double> twin(size_t(cam.width) * size_t(cam.height), 0.0);
+            for (int y = 0; y < cam.height; ++y)
+                for (int x = 0; x < cam.width; ++x) {
+                    const dvec3 we = -cam.ray(x + 0.5, y + 0.5);
+                    const double t = we.z > 0 ? brdf::luminance(render::surfaceRadiance(s, cam.position, we)) : 0.0;
+                    twin[size_t(y) * size_t(cam.width) + size_t(x)] = t;
+                    peak = std::max(peak, t);
+                }
+            int compared = 0;
+            for (size_t i = 0; i < twin.size(); ++i)
+                if (twin[i] > 1e-3 * peak) {
+                    worst = std::max(worst, std::abs(double(img.data[4 * i]) - twin[i]) / twin[i]);
+                    ++compared;
+                }
+            CAPTURE(incidence);
+            CHECK(compared >= 50);
+            CHECK(worst < 1e-4);
+            MESSAGE("spectral table, measurement output, " << incidence << " deg: worst relative error " << worst);
+        }
 }
 
 TEST_CASE("render::assemble a program holds exactly the terms it runs") {
