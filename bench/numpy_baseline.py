@@ -21,6 +21,11 @@ Limits: this scene only (no other model, light or diagnosis), and a pixel is in 
 (hilite interpolates the boundary), which costs it some 1e-4 of aspect at 512^2.
 
 Run as a script to compare with the CLI:  /usr/bin/python3 bench/numpy_baseline.py --cli build/bin/hilite
+
+Time it with glibc's malloc keeping freed memory as well (MALLOC_MMAP_THRESHOLD_=1000000000
+MALLOC_TRIM_THRESHOLD_=1000000000): each 512^2 float64 temporary is 2 MB, which glibc otherwise maps fresh and
+returns, and where page faults are expensive (this project's VM) that alone made the sweep 9x slower (13.8 s
+against 1.47 s). bench/speed_table.py and python/bench/bench_python.py time both and judge against the faster.
 """
 
 import argparse
