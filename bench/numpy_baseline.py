@@ -31,6 +31,7 @@ against 1.47 s). bench/speed_table.py and python/bench/bench_python.py time both
 import argparse
 import json
 import math
+import os
 import subprocess
 import sys
 import time
@@ -222,6 +223,21 @@ def sweep(thetas, size=512):
     """measure() at each angle: a columnar dict {field: numpy array}."""
     rows = [measure(t, size) for t in thetas]
     return {k: np.array([r[k] for r in rows]) for k in rows[0]}
+
+
+# glibc's malloc keeping freed memory: no fresh pages per 2 MB temporary (see the module's docstring).
+MALLOC_KEEPS_MEMORY = {"MALLOC_MMAP_THRESHOLD_": "1000000000", "MALLOC_TRIM_THRESHOLD_": "1000000000"}
+
+
+def sweep_seconds(extra_env=None):
+    """sweep(0..85) in a fresh /usr/bin/python3 whose environment adds extra_env (malloc's settings are read
+    at start-up), the sweep alone timed."""
+    code = ("import sys, time; sys.path.insert(0, sys.argv[1]); import numpy as np, numpy_baseline as b; "
+            "t = time.perf_counter(); b.sweep(np.arange(86.0)); print(time.perf_counter() - t)")
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = subprocess.run(["/usr/bin/python3", "-c", code, here], check=True, capture_output=True, text=True,
+                         env=dict(os.environ, **(extra_env or {}))).stdout
+    return float(out.split()[-1])
 
 
 def cli_rows(hilite, thetas):

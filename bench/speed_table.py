@@ -78,15 +78,6 @@ def wall(cmd, repeats, extra_env=None):
     return statistics.median(times)
 
 
-def numpy_seconds(extra_env):
-    """bench/numpy_baseline.py's 86-angle sweep in a fresh /usr/bin/python3, the sweep alone timed."""
-    code = ("import sys, time; sys.path.insert(0, sys.argv[1]); import numpy as np, numpy_baseline as b; "
-            "t = time.perf_counter(); b.sweep(np.arange(86.0)); print(time.perf_counter() - t)")
-    out = subprocess.run(["/usr/bin/python3", "-c", code, HERE], check=True, capture_output=True, text=True,
-                         env=dict(os.environ, **extra_env)).stdout
-    return float(out.strip().splitlines()[-1])
-
-
 def machine(hilite):
     cpu = platform.processor() or "?"
     try:
@@ -150,9 +141,11 @@ def main(argv=None):
     # to keep freed memory (no mmap per large temporary, no trimming). On this VM every fresh page faults
     # expensively, and numpy's 2 MB temporaries otherwise take new pages each time: measured 13.8 s against
     # 1.47 s for the same arithmetic. hilite is timed both ways too; the fair ratio is against the faster baseline.
-    tuned = {"MALLOC_MMAP_THRESHOLD_": "1000000000", "MALLOC_TRIM_THRESHOLD_": "1000000000"}
-    t_numpy = numpy_seconds({}) * 1e3
-    t_numpy_tuned = numpy_seconds(tuned) * 1e3
+    sys.path.insert(0, HERE)
+    import numpy_baseline  # noqa: E402 (beside this script)
+    tuned = numpy_baseline.MALLOC_KEEPS_MEMORY
+    t_numpy = numpy_baseline.sweep_seconds() * 1e3
+    t_numpy_tuned = numpy_baseline.sweep_seconds(tuned) * 1e3
     t_sweep_tuned = wall(sweep, args.repeats, tuned)
     rows.append(("the same 86 measurements in plain numpy (`bench/numpy_baseline.py`, float64, this run), "
                  "glibc's default malloc",

@@ -121,11 +121,7 @@ def main(argv=None):
 
     # The same baseline in a process whose malloc keeps freed memory: on a machine where fresh pages fault
     # expensively (this project's VM: 13.8 s against 1.47 s), numpy's default pays for new pages per temporary.
-    code = ("import sys, time; sys.path.insert(0, sys.argv[1]); import numpy as np, numpy_baseline as b; "
-            "t = time.perf_counter(); b.sweep(np.arange(86.0)); print(time.perf_counter() - t)")
-    tuned_env = dict(os.environ, MALLOC_MMAP_THRESHOLD_="1000000000", MALLOC_TRIM_THRESHOLD_="1000000000")
-    np_tuned = 1e3 * float(subprocess.run(["/usr/bin/python3", "-c", code, os.path.join(HERE, "..", "..", "bench")],
-                                          check=True, capture_output=True, text=True, env=tuned_env).stdout.split()[-1])
+    np_tuned = 1e3 * numpy_baseline.sweep_seconds(numpy_baseline.MALLOC_KEEPS_MEMORY)
 
     py_aspect = np.asarray(sweep_result["aspect"], dtype=float)
     diff = np.abs(py_aspect - base["aspect"])
