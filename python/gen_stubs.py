@@ -106,7 +106,10 @@ class MachineError(RuntimeError): ...
             ("albedo", f"theta_deg: {arr}, *, azimuth: float = 0.0,", "npt.NDArray[np.float64]"),
             ("bihemispherical_albedo", "*,", "npt.NDArray[np.float64]"),
             ("normalization", "*,", "float | npt.NDArray[np.float64]"),
-            ("eval", "wi: npt.ArrayLike, wo: npt.ArrayLike, *,", "npt.NDArray[np.float64]")):
+            ("eval", "wi: npt.ArrayLike, wo: npt.ArrayLike, *,", "npt.NDArray[np.float64]"),
+            ("bounces", f"theta_deg: {arr}, *, paths: int = 100000, batches: int = 16, seed: int = 1,\n"
+                        "    texels: int = 1024, bumps_per_tile: int = 64, surface: str = 'hermite',\n"
+                        "    bump_seed: int | None = None,", "dict[str, npt.NDArray[Any]]")):
         kws = keywords(name == "normalization", material)
         b += f"def {name}(\n    {head}\n" + kws + f") -> {ret}:\n" + doc(getattr(_brdf, name)) + "    ...\n\n"
     with open(f"{out}/__init__.pyi", "w") as f:

@@ -41,6 +41,7 @@
 #include "brdf/params.hpp"
 #include "brdf/terms.hpp"
 #include "core/error.hpp"
+#include "experiments/bounces.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/fit.hpp"
 #include "experiments/run.hpp"

@@ -4,6 +4,7 @@
     hilite.brdf.albedo(np.arange(0, 90, 5.0), model="ggx", roughness=0.3, geometry="smith")
     hilite.brdf.normalization(model="beckmann", roughness=0.02)  # int D(h) (n.h) dw_h: 1 if normalized
     hilite.brdf.eval(wi, wo, model="ggx", roughness=0.2)         # f(wi, wo), (..., 3)
+    hilite.brdf.bounces([0, 60], roughness=0.6, material="gold") # light per bounce order: columns
 
 Keywords are the [material] parameters of the registry (model, roughness, fresnel, f0, eta, k, geometry,
 diffuse, ...), checked as on the CLI; angles are degrees; directions are unit vectors in the local frame
@@ -15,6 +16,7 @@ import numbers
 import numpy as np
 
 from . import _hilite
+from ._measure import columns
 from ._params import REGISTRY, InputError, items_of, signature_doc
 
 _MATERIAL = {p["name"] for p in REGISTRY if p["table"] == "material" and p["name"] not in ("brdf", "param")}
@@ -88,3 +90,32 @@ def eval(wi, wo, **params):  # noqa: A001 (the issue's name: hilite.brdf.eval)
 _KEYWORDS = signature_doc(_MATERIAL)
 for _f in (fresnel, albedo, bihemispherical_albedo, normalization, eval):
     _f.__doc__ += "\n    Keywords (from the parameter registry):\n" + _KEYWORDS + "\n"
+
+
+def _whole(name, value, lowest=None):
+    if isinstance(value, bool) or not isinstance(value, (numbers.Integral, np.integer)):
+        raise TypeError(f"{name}: expected a whole number, got {type(value).__name__}")
+    if lowest is not None and value < lowest:
+        raise InputError(f"{name}: must be at least {lowest} (got {value})")
+    return int(value)
+
+
+def bounces(theta_deg, *, paths=100000, batches=16, seed=1, texels=1024, bumps_per_tile=64, surface="hermite",
+            bump_seed=None, **params):
+    """Light per bounce order on a rough Beckmann surface (`hilite brdf bounces --json`, docs/bounces.md): per
+    incidence, traced on an explicit height field and walked on Smith's microsurface, beside E(mu) and
+    Kulla-Conty. Returns columns (a dict of numpy arrays, one entry per angle): theta_deg and the [bounces]
+    row's fields (traced_e1 .. traced_e_multiple, walk_*, kc_*, colours and C* per order, ...).
+    The keywords paths, batches, seed, texels, bumps_per_tile and surface are the [bounces] table's; bump_seed
+    is the field's; the rest are [material] parameters (model beckmann unless given; roughness,
+    fresnel, material, eta, k, f0). The same settings give the CLI's numbers exactly."""
+    a = _angles(theta_deg)
+    counts = [_whole("paths", paths, 1), _whole("batches", batches, 1), _whole("seed", seed, 0),
+              _whole("texels", texels), _whole("bumps_per_tile", bumps_per_tile)]
+    if not isinstance(surface, str):
+        raise TypeError(f"surface: expected 'hermite' or 'bilinear', got {type(surface).__name__}")
+    params.setdefault("model", "beckmann")
+    items = items_of(params, _MATERIAL) + _incidence_items(a)
+    if bump_seed is not None:
+        items += items_of({"bump_seed": bump_seed})
+    return columns(_hilite.bounces(items, *counts, surface))

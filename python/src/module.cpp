@@ -11,6 +11,7 @@
 #include "brdf/integrate.hpp"
 #include "core/error.hpp"
 #include "core/text.hpp"
+#include "experiments/bounces.hpp"
 #include "experiments/fit.hpp"
 #include "experiments/results.hpp"
 #include "experiments/run.hpp"
@@ -181,6 +182,32 @@ py::array_t<double> albedoOf(const Items& items) {
     return rgbRows(v);
 }
 
+/// `hilite brdf bounces --json` in process: a row per incidence (experiments/bounces.hpp); the settings (named
+/// as the [bounces] keys) and the scene are checked before the first path.
+py::list bouncesOf(const Items& items, long paths, int batches, uint64_t seed, int texels, int bumpsPerTile,
+                   const std::string& surface) {
+    std::vector<std::string> rows;
+    {
+        py::gil_scoped_release release;
+        experiments::BounceSettings s;
+        const auto kind = micro::parseTracedSurface(surface);
+        if (!kind) throw InputError("surface: '" + surface + "' is not a traced surface (allowed: hermite, bilinear)");
+        s.options.surface = *kind;
+        s.options.paths = paths;
+        s.options.batches = batches;
+        s.options.seed = seed;
+        s.texels = texels;
+        s.bumpsPerTile = bumpsPerTile;
+        experiments::checkBounceSettings(s, false);
+        const scene::Values values = python::values(items);
+        experiments::resolveBounceScene(values);
+        for (const auto& study : experiments::studyBounces(values, s)) rows.push_back(experiments::bounceRow(study).dump());
+    }
+    py::list out;
+    for (const auto& j : rows) out.append(python::toPython(nlohmann::json::parse(j)));
+    return out;
+}
+
 py::array_t<double> bihemispherical(const Items& items) {
     std::vector<dvec3> v;
     {
@@ -335,6 +362,8 @@ PYBIND11_MODULE(_hilite, m) {
     m.def("fresnel", &fresnelOf, py::arg("items"), py::arg("spectral"));
     m.def("albedo", &albedoOf, py::arg("items"));
     m.def("bihemispherical_albedo", &bihemispherical, py::arg("items"));
+    m.def("bounces", &bouncesOf, py::arg("items"), py::arg("paths"), py::arg("batches"), py::arg("seed"),
+          py::arg("texels"), py::arg("bumps_per_tile"), py::arg("surface"));
     m.def("normalization", &normalizationOf, py::arg("items"));
     m.def("eval", &evalBrdf, py::arg("items"), py::arg("wi"), py::arg("wo"));
     m.def("resolve", &resolveColumns, py::arg("items"), py::arg("purpose"));

@@ -73,3 +73,33 @@ def test_eval_lambert_and_reciprocity(hilite):
     assert hilite.brdf.eval(wi.reshape(25, 20, 3), n, model="ggx").shape == (25, 20, 3)
     below = hilite.brdf.eval([0, 0, 1], [0.6, 0, -0.8], model="ggx")
     assert np.all(below == 0)
+
+
+def test_bounces_equal_cli(hilite):
+    # The same settings and seeds: the CLI's rows field for field, times aside.
+    settings = dict(paths=4000, batches=4, texels=256, bumps_per_tile=16)
+    got = hilite.brdf.bounces([0.0, 60.0], roughness=0.6, material="gold", **settings)
+    rows = cli_rows("brdf", "bounces", "--json", "--paths", "4000", "--batches", "4", "--texels", "256",
+                    "--bumps-per-tile", "16", "--roughness", "0.6", "--material", "gold", "--incidence", "0,60")
+    assert len(rows) == 2 and list(got["theta_deg"]) == [0.0, 60.0]
+    for key in rows[0]:
+        if key.endswith("time_ms"):
+            continue
+        want = [r[key] for r in rows]
+        if isinstance(want[0], str):
+            assert list(got[key]) == want, key
+        else:
+            np.testing.assert_array_equal(got[key], np.array(want, dtype=float), err_msg=key)
+    # F = 1 and Smith's walk loses nothing: its first order and the rest add to 1.
+    np.testing.assert_allclose(got["smith_e1"] + got["smith_multiple"], 1.0, atol=1e-12)
+
+
+def test_bounces_refusals(hilite):
+    with pytest.raises(hilite.InputError, match="model"):
+        hilite.brdf.bounces(0.0, model="ggx", roughness=0.5, paths=100)
+    with pytest.raises(hilite.InputError, match="paths"):
+        hilite.brdf.bounces(0.0, roughness=0.5, paths=0)
+    with pytest.raises(hilite.InputError, match="surface"):
+        hilite.brdf.bounces(0.0, roughness=0.5, paths=100, surface="smooth")
+    with pytest.raises(TypeError, match="batches"):
+        hilite.brdf.bounces(0.0, roughness=0.5, batches=2.5)

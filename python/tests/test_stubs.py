@@ -14,7 +14,10 @@ def test_stubs_cover_the_registry(hilite):
     assert "Literal['ggx'" in init or "'ggx'" in init
     brdf = ast.parse(open(os.path.join(here, "brdf.pyi")).read())
     names = {n.name for n in brdf.body if isinstance(n, ast.FunctionDef)}
-    assert names == {"fresnel", "albedo", "bihemispherical_albedo", "normalization", "eval"}
+    public = {n for n in dir(hilite.brdf) if not n.startswith("_") and callable(getattr(hilite.brdf, n))
+              and getattr(getattr(hilite.brdf, n), "__module__", "") == "hilite.brdf"}
+    assert public == {"fresnel", "albedo", "bihemispherical_albedo", "normalization", "eval", "bounces"}
+    assert names == public
     assert os.path.exists(os.path.join(here, "py.typed"))
 
 

@@ -78,10 +78,7 @@ int runBounces(BounceFlags& f) {
         std::cout << "# " << r.scene.brdf << "\n# " << f.settings << ", field seed " << values.text("bump_seed") << "\n";
     for (const auto& s : experiments::studyBounces(values, f.settings)) {
         if (f.json) {
-            nlohmann::ordered_json j{{"theta_deg", s.thetaDeg}};
-            const nlohmann::json fields = experiments::bounceFields(s);
-            for (const std::string& k : experiments::bounceColumns()) j[k] = fields.at(k);
-            std::cout << j.dump() << "\n" << std::flush;
+            std::cout << experiments::bounceRow(s).dump() << "\n" << std::flush;
         } else {
             printStudy(s, f.exits);
             std::cout << std::flush;

@@ -210,6 +210,13 @@ nlohmann::json bounceFields(const BounceStudy& s) {
     return row;
 }
 
+nlohmann::ordered_json bounceRow(const BounceStudy& s) {
+    nlohmann::ordered_json j{{"theta_deg", s.thetaDeg}};
+    const nlohmann::json f = bounceFields(s);
+    for (const std::string& k : bounceColumns()) j[k] = f.at(k);
+    return j;
+}
+
 }  // namespace hilite::experiments
 
 namespace hilite::experiments {

@@ -55,6 +55,8 @@ std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceS
 /// The columns a study adds to a row, and the row's values for them.
 std::vector<std::string> bounceColumns();
 nlohmann::json bounceFields(const BounceStudy& s);
+/// `hilite brdf bounces --json`'s object for one study: theta_deg, then bounceColumns() in their order.
+nlohmann::ordered_json bounceRow(const BounceStudy& s);
 
 /// The "bounces" report section: energy per order against Smith and Kulla-Conty, colour per order, shares.
 std::string bounceSection(const std::vector<nlohmann::json>& rows);
