@@ -156,42 +156,6 @@ dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we) {
 
 namespace {
 
-/// The infinite plane z = 0: four triangles from the origin to points at infinity (w = 0).
-const float kPlane[] = {
-    0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0,   //
-    0, 0, 0, 1, 0, 1, 0, 0, -1, 0, 0, 0,  //
-    0, 0, 0, 1, -1, 0, 0, 0, 0, -1, 0, 0,  //
-    0, 0, 0, 1, 0, -1, 0, 0, 1, 0, 0, 0,  //
-};
-
-/// View-projection of a pinhole camera. Near/far bound depth only: GL_DEPTH_CLAMP keeps the plane's
-/// far part (at infinity) instead of clipping it. `jitter` (pixels) shifts the image by -jitter, so that
-/// each pixel centre rasterizes what lies at centre + jitter: coverage (a pixel is drawn only where its
-/// sample sees the plane, e.g. at the horizon) then agrees with the shader's jittered ray.
-glm::mat4 viewProjection(const PinholeCamera& c, dvec2 jitter) {
-    const double distance = glm::length(c.position);
-    const double nearZ = 1e-3 * distance, farZ = 1e3 * distance;
-    glm::dmat4 view(1.0);
-    for (int i = 0; i < 3; ++i) {
-        view[i][0] = c.right[i];
-        view[i][1] = c.up[i];
-        view[i][2] = c.back[i];
-    }
-    view[3][0] = -glm::dot(c.right, c.position);
-    view[3][1] = -glm::dot(c.up, c.position);
-    view[3][2] = -glm::dot(c.back, c.position);
-    glm::dmat4 proj(0.0);
-    proj[0][0] = 1.0 / c.tanHalfX;
-    proj[1][1] = 1.0 / c.tanHalfY;
-    proj[2][2] = -(farZ + nearZ) / (farZ - nearZ);
-    proj[2][3] = -1.0;
-    proj[3][2] = -2.0 * farZ * nearZ / (farZ - nearZ);
-    // ndc += delta needs clip += delta * w_clip = delta * (-z_view): proj[2][.] -= delta, delta = -2 jitter / size.
-    proj[2][0] += 2.0 * jitter.x / c.width;
-    proj[2][1] += 2.0 * jitter.y / c.height;
-    return glm::mat4(proj * view);
-}
-
 std::string secondsText(double s) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", s);
@@ -222,14 +186,10 @@ void setAreaLightUniforms(const gl::Program& prog, const Scene& scene) {
 
 Renderer::Renderer(gl::Context& /*current*/, std::string shaderDir)
     : m_shaderDir(shaderDir.empty() ? shaderDirectory() : std::move(shaderDir)) {
+    // The draw is one triangle made from gl_VertexID (shaders/plane.vert): no vertex data, but the core
+    // profile draws only with a vertex array object bound.
     glGenVertexArrays(1, &m_vao);
-    glBindVertexArray(m_vao);
-    glGenBuffers(1, &m_vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    glBufferData(GL_ARRAY_BUFFER, sizeof kPlane, kPlane, GL_STATIC_DRAW);
-    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(0);
-    HILITE_GL_CHECK_WHAT("creating the plane mesh");
+    HILITE_GL_CHECK_WHAT("creating the vertex array");
 }
 
 Renderer::~Renderer() {
@@ -237,7 +197,6 @@ Renderer::~Renderer() {
     m_fbos.clear();
     m_bumpTextures.reset();
     for (auto& t : m_measuredTextures) glDeleteTextures(1, &t.second);
-    if (m_vbo) glDeleteBuffers(1, &m_vbo);
     if (m_vao) glDeleteVertexArrays(1, &m_vao);
 }
 
@@ -286,7 +245,6 @@ void Renderer::setBrdfFileUniforms(const gl::Program& prog, const Scene& scene) 
 }
 
 void Renderer::setUniforms(const gl::Program& prog, const Scene& scene, const PinholeCamera& cam, dvec2 jitter) const {
-    prog.setMat4("uViewProj", glm::value_ptr(viewProjection(cam, jitter)));
     prog.set("uJitter", float(jitter.x), float(jitter.y));
     set3(prog, "uCamBack", cam.back);
     set3(prog, "uCamRight", cam.right);
@@ -333,21 +291,19 @@ void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const Pinho
     gl::Framebuffer& fbo = framebuffer(camera.width, camera.height);
     fbo.bind();
     glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);  // the camera may see the plane's fan from either winding
-    // The plane is the only geometry and its four triangles never overlap, so nothing can hide anything:
-    // the depth test would only cost a depth read-modify-write per pixel (~0.5 ms at 512^2 on llvmpipe).
-    // The framebuffer keeps its depth attachment for the geometry to come (micro-geometry).
     glDisable(GL_DEPTH_TEST);
-    glEnable(GL_DEPTH_CLAMP);
-    // A crop shades (and clears) only its pixels: the rest of the frame is never read.
-    if (crop.empty()) {
-        glDisable(GL_SCISSOR_TEST);
-    } else {
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(crop.x, crop.y, crop.width, crop.height);
+    glDisable(GL_SCISSOR_TEST);
+    // One triangle covers the viewport and the shader writes every pixel (the plane from the pixel's own ray,
+    // 0 where it sees the sky), so nothing is cleared: llvmpipe's clear of an RGBA32F frame was 0.7 of a
+    // 2.8 ms draw at 512^2. A crop is the viewport; gl_FragCoord stays in whole-frame pixels, as the
+    // shader's ray needs, and the rest of the frame is neither shaded nor read.
+    if (!crop.empty()) glViewport(crop.x, crop.y, crop.width, crop.height);
+    // A .brdf file's GLSL is someone else's and may `discard`: its frame is cleared, so no pixel keeps an
+    // earlier render's value.
+    if (scene.brdfFile) {
+        glClearColor(0.f, 0.f, 0.f, 0.f);
+        glClear(GL_COLOR_BUFFER_BIT);
     }
-    glClearColor(0.f, 0.f, 0.f, 0.f);
-    glClear(GL_COLOR_BUFFER_BIT);
     prog.use();
     setUniforms(prog, scene, camera, jitter);
     if (scene.brdf.measured && !scene.brdfFile) bindMeasured(prog, scene.brdf.measured);
@@ -356,11 +312,11 @@ void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const Pinho
         m_bumpTextures->bind(prog, scene, camera);
     }
     glBindVertexArray(m_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 12);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
     HILITE_GL_CHECK_WHAT("drawing the plane");
-    // Leave no scissor behind: other GL users of the context (the hard-case term runner) draw and clear whole
-    // framebuffers, and a crop's rectangle left enabled silently kept their pixels at the clear colour.
-    glDisable(GL_SCISSOR_TEST);
+    // Leave the whole frame's viewport behind: other GL users of the context (the hard-case term runner)
+    // draw whole framebuffers, and a crop's rectangle left in place would silently keep their other pixels.
+    if (!crop.empty()) glViewport(0, 0, fbo.width(), fbo.height());
     m_drawn = &fbo;
     m_drawnCrop = crop;
 }

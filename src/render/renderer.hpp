@@ -38,7 +38,7 @@ public:
     /// Draws and reads back: 4 floats per pixel, row 0 at the bottom (see shaders/shade.frag for the
     /// channels of each output). `jitter` moves every pixel's sample point by that many pixels (the
     /// shader's uJitter; (0, 0) = the pixel centre), for supersampling. A non-empty `crop` draws and reads
-    /// only those pixels of the camera's image (scissor): `image` is then crop.width x crop.height.
+    /// only those pixels of the camera's image (the viewport): `image` is then crop.width x crop.height.
     void render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image, dvec2 jitter = dvec2(0.0),
                 const PixelRect& crop = {});
     ImageF render(const Scene& scene, const PinholeCamera& camera, Output out);
@@ -79,7 +79,7 @@ private:
     gl::Framebuffer& framebuffer(int width, int height);
     gl::Framebuffer* m_drawn = nullptr;  ///< the framebuffer of the last draw()
     PixelRect m_drawnCrop;               ///< and what of it was drawn
-    unsigned int m_vao = 0, m_vbo = 0;
+    unsigned int m_vao = 0;
     std::unique_ptr<class BumpTextures> m_bumpTextures;  ///< the bump fields' textures
     /// Measured tables uploaded as 3D textures (shaders/brdf_gl.glsl, block Measured), one per table read; the
     /// shared_ptr keeps the table's address from being reused by another while its texture lives.

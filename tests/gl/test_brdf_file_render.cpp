@@ -187,3 +187,31 @@ TEST_CASE("render::Renderer GLSL errors in a .brdf name its own lines") {
         CHECK(u.rfind("t.brdf:3:", 0) == 0);
     }
 }
+
+// A .brdf file's GLSL may discard: its frames are cleared, so a discarded pixel reads 0, not an earlier frame.
+TEST_CASE("render::Renderer a .brdf that discards leaves 0, not the previous frame") {
+    auto& env = test::glEnv();
+    render::Scene bright;
+    bright.brdf.model = brdf::Model::GGX;
+    bright.brdf.roughness = 1.0;
+    render::Scene s;
+    s.brdfFile = fromText(kHead + "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
+                                  "    if (V.y > 0.0) discard;\n    return vec3(1.0);\n}\n::end shader\n");
+    const PinholeCamera cam = camera(bright, 60, 48, 32);
+    ImageF img;
+    env.renderer->render(bright, cam, render::Output::Color, img);
+    env.renderer->render(s, cam, render::Output::Color, img);
+    int discarded = 0, kept = 0;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const float* p = img.pixel(x, y);
+            if (p[3] == 0.f) {
+                ++discarded;
+                CHECK(p[0] == 0.f);
+            } else {
+                ++kept;
+            }
+        }
+    CHECK(discarded > 100);
+    CHECK(kept > 100);
+}

@@ -183,7 +183,7 @@ TEST_CASE("render::Renderer point light: every pixel matches the double twin") {
     }
 }
 
-TEST_CASE("render::Renderer a cropped render leaves no scissor behind for other users of the context") {
+TEST_CASE("render::Renderer a cropped render leaves no scissor or viewport behind for other users of the context") {
     auto& env = test::glEnv();
     const render::Scene s = makeScene(brdf::Model::GGX, 30);
     ImageF img;
@@ -191,4 +191,44 @@ TEST_CASE("render::Renderer a cropped render leaves no scissor behind for other 
                          PixelRect{40, 40, 8, 8});
     CHECK(img.width == 8);
     CHECK(glIsEnabled(GL_SCISSOR_TEST) == GL_FALSE);  // (found by the hard-case report: its 1x1 terms read 0)
+    GLint viewport[4] = {};
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    CHECK(viewport[2] == 64);
+    CHECK(viewport[3] == 64);
+}
+
+// Frames are not cleared (the shader writes every pixel, 0 for the sky): a frame drawn over a brighter one of
+// the same size, whole or cropped, holds exactly what it holds drawn alone, and its sky is 0.
+TEST_CASE("render::Renderer every pixel is written: no earlier frame shows through, sky or crop") {
+    auto& env = test::glEnv();
+    render::Scene bright = makeScene(brdf::Model::GGX, 0);
+    bright.brdf.roughness = 1.0;  // radiance on every pixel of a downward view
+    render::Scene s = makeScene(brdf::Model::GGX, 80);
+    const PinholeCamera down = measureCamera(bright, 60, 96, 64);
+    const PinholeCamera horizon = PinholeCamera::photo(5, 180, 10, 60, 96, 64);  // half of it is sky
+    for (render::Output out : {render::Output::Measure, render::Output::Color}) {
+        const ImageF alone = env.renderer->render(s, horizon, out);
+        int sky = 0, skyNonZero = 0;
+        for (int y = 0; y < horizon.height; ++y)
+            for (int x = 0; x < horizon.width; ++x)
+                if (horizon.ray(x + 0.5, y + 0.5).z > 1e-6) {
+                    ++sky;
+                    for (int c = 0; c < 4; ++c) skyNonZero += alone.pixel(x, y)[c] != 0.f;
+                }
+        CHECK(sky > 1000);
+        CHECK(skyNonZero == 0);
+        const PixelRect crop{10, 5, 60, 50};
+        for (bool cropped : {false, true}) {
+            ImageF over;
+            env.renderer->render(bright, down, out, over);
+            env.renderer->render(s, horizon, out, over, dvec2(0.0), cropped ? crop : PixelRect{});
+            int differ = 0;
+            for (int y = 0; y < over.height; ++y)
+                for (int x = 0; x < over.width; ++x)
+                    for (int c = 0; c < 4; ++c)
+                        differ += over.pixel(x, y)[c] != alone.pixel(cropped ? x + crop.x : x, cropped ? y + crop.y : y)[c];
+            CAPTURE(cropped);
+            CHECK(differ == 0);
+        }
+    }
 }
