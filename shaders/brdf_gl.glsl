@@ -179,19 +179,18 @@ vec3 measuredBrdf(vec3 wi, vec3 wo) {
 // luminances (uSpectralTableY) give the same L with one scalar gathered per entry instead of three
 // (llvmpipe gathers an indexed uniform lane by lane: copper's NDF + F at 512^2 cost 1.32x the NDF alone).
 uniform float uSpectralTableY[HILITE_SPECTRAL_TABLE_SIZE];
-vec3 F_SpectralTable(float cosTheta_i) {
-    float x = sqrt(clamp(cosTheta_i, 0.0, 1.0)) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
-    int i = min(int(x), HILITE_SPECTRAL_TABLE_SIZE - 2);
-    return vec3(mix(uSpectralTableY[i], uSpectralTableY[i + 1], x - float(i)));
-}
 #else
 uniform vec3 uSpectralTable[HILITE_SPECTRAL_TABLE_SIZE];
+#endif
 vec3 F_SpectralTable(float cosTheta_i) {
     float x = sqrt(clamp(cosTheta_i, 0.0, 1.0)) * float(HILITE_SPECTRAL_TABLE_SIZE - 1);
     int i = min(int(x), HILITE_SPECTRAL_TABLE_SIZE - 2);
+#if defined(HILITE_OUTPUT_MEASURE)
+    return vec3(mix(uSpectralTableY[i], uSpectralTableY[i + 1], x - float(i)));
+#else
     return mix(uSpectralTable[i], uSpectralTable[i + 1], x - float(i));
-}
 #endif
+}
 //@end
 
 //@block EnergyE

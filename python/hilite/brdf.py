@@ -105,13 +105,15 @@ def bounces(theta_deg, *, paths=100000, batches=16, seed=1, texels=1024, bumps_p
     """Light per bounce order on a rough Beckmann surface (`hilite brdf bounces --json`, docs/bounces.md): per
     incidence, traced on an explicit height field and walked on Smith's microsurface, beside E(mu) and
     Kulla-Conty. Returns columns (a dict of numpy arrays, one entry per angle): theta_deg and the [bounces]
-    row's fields (traced_e1 .. traced_e_multiple, walk_*, kc_*, colours and C* per order, ...).
+    row's fields (traced_e1 .. traced_e5plus, traced_multiple, smith_* alike, kc_multiple, colours and C* per
+    order, albedos, each estimate with its _err).
     The keywords paths, batches, seed, texels, bumps_per_tile and surface are the [bounces] table's; bump_seed
     is the field's; the rest are [material] parameters (model beckmann unless given; roughness,
     fresnel, material, eta, k, f0). The same settings give the CLI's numbers exactly."""
     a = _angles(theta_deg)
-    counts = [_whole("paths", paths, 1), _whole("batches", batches, 1), _whole("seed", seed, 0),
-              _whole("texels", texels), _whole("bumps_per_tile", bumps_per_tile)]
+    # Types here; ranges in C++ (experiments::checkBounceSettings, as for an experiment's [bounces] keys).
+    counts = [_whole("paths", paths), _whole("batches", batches), _whole("seed", seed, 0), _whole("texels", texels),
+              _whole("bumps_per_tile", bumps_per_tile)]
     if not isinstance(surface, str):
         raise TypeError(f"surface: expected 'hermite' or 'bilinear', got {type(surface).__name__}")
     params.setdefault("model", "beckmann")
@@ -119,3 +121,6 @@ def bounces(theta_deg, *, paths=100000, batches=16, seed=1, texels=1024, bumps_p
     if bump_seed is not None:
         items += items_of({"bump_seed": bump_seed})
     return columns(_hilite.bounces(items, *counts, surface))
+
+
+bounces.__doc__ += "\n    Keywords (from the parameter registry):\n" + _KEYWORDS + "\n"
