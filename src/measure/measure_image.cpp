@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -60,7 +61,33 @@ Survey survey(const Pixels& px) {
     for (int y = 0; y < px.height; ++y) {
         for (int r = 0; r < runs; ++r) {
             float m = -1.f, lo = s.minVisible;
-            for (int x = r * kRun; x < r * kRun + px.runLength(r); ++x) {
+            int x = r * kRun;
+            const int end = r * kRun + px.runLength(r);
+#if defined(__SSE2__)
+            // Four pixels at a time, transposed to an L and a w vector: the scalar loop below was a third of
+            // the analysis (a branch per pixel). Same values: max(L, 0) is 0 for a NaN L, as std::max(0, L).
+            const __m128 zero = _mm_setzero_ps(), minus1 = _mm_set1_ps(-1.f);
+            const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+            __m128 mv = minus1, lov = inf;
+            for (; x + 4 <= end; x += 4) {
+                const float* q = px.at(x, y);
+                const __m128 p0 = _mm_loadu_ps(q), p1 = _mm_loadu_ps(q + 4), p2 = _mm_loadu_ps(q + 8),
+                             p3 = _mm_loadu_ps(q + 12);
+                const __m128 t0 = _mm_unpacklo_ps(p0, p1), t1 = _mm_unpacklo_ps(p2, p3);  // L0 L1 u0 u1, L2 L3 u2 u3
+                const __m128 t2 = _mm_unpackhi_ps(p0, p1), t3 = _mm_unpackhi_ps(p2, p3);  // v0 v1 w0 w1, v2 v3 w2 w3
+                const __m128 L = _mm_max_ps(_mm_movelh_ps(t0, t1), zero), w = _mm_movehl_ps(t3, t2);
+                const __m128 visible = _mm_cmpgt_ps(w, zero);
+                const __m128 dense = _mm_or_ps(_mm_and_ps(visible, L), _mm_andnot_ps(visible, minus1));
+                _mm_storeu_ps(px.dense + px.index(x, y), dense);
+                mv = _mm_max_ps(mv, dense);
+                lov = _mm_min_ps(lov, _mm_or_ps(_mm_and_ps(visible, L), _mm_andnot_ps(visible, inf)));
+            }
+            alignas(16) float mm[4], ll[4];
+            _mm_store_ps(mm, mv);
+            _mm_store_ps(ll, lov);
+            for (int k = 0; k < 4; ++k) m = std::max(m, mm[k]), lo = std::min(lo, ll[k]);
+#endif
+            for (; x < end; ++x) {
                 const float* q = px.at(x, y);
                 const bool visible = q[3] > 0.f;
                 const float L = visible ? std::max(0.f, q[0]) : -1.f;  // (a negative or NaN L counts as 0)
@@ -222,11 +249,61 @@ struct RegionSums {
     bool touchesBorder = false, touchesSky = false;
 };
 
+/// The weight of a pixel wholly inside the region.
+struct WholePixel {
+    double operator()(int) const { return 1.0; }
+};
+
 /// Adds the pixels of `bits` (of the run starting at x0 in row y), each with weight f(x) * w.
 template <typename Fraction>
 void accumulate(const Pixels& px, int x0, int y, uint32_t bits, dvec2 shift, Fraction f, Sums& sums) {
     // Two sets of sums, alternating: each sum is a chain of dependent adds, so this halves the time.
     // (__builtin_ctz: gcc and clang; bits != 0 here.)
+#if defined(__SSE2__)
+    // The two sets as the two lanes of SSE2 doubles: the same operations in the same order, so the same
+    // sums bit for bit, two pixels an instruction. A lone last pixel pairs with a zero one (w = 0 adds 0).
+    static const float kNone[4] = {0.f, 0.f, 0.f, 0.f};
+    const __m128d sx = _mm_set1_pd(shift.x), sy = _mm_set1_pd(shift.y);
+    __m128d s0 = _mm_setzero_pd(), su = s0, sv = s0, suu = s0, suv = s0, svv = s0;
+    const auto pair = [&](const float* qa, const float* qb, __m128d f2) {
+        const __m128 A = _mm_loadu_ps(qa), B = _mm_loadu_ps(qb);
+        const __m128 S = _mm_unpacklo_ps(A, B), T = _mm_unpackhi_ps(A, B);  // La Lb ua ub, va vb wa wb
+        const __m128d w = _mm_mul_pd(f2, _mm_cvtps_pd(_mm_movehl_ps(T, T)));
+        const __m128d du = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(S, S)), sx);
+        const __m128d dv = _mm_sub_pd(_mm_cvtps_pd(T), sy);
+        const __m128d wu = _mm_mul_pd(w, du), wv = _mm_mul_pd(w, dv);
+        s0 = _mm_add_pd(s0, w);
+        su = _mm_add_pd(su, wu);
+        sv = _mm_add_pd(sv, wv);
+        suu = _mm_add_pd(suu, _mm_mul_pd(wu, du));
+        suv = _mm_add_pd(suv, _mm_mul_pd(wu, dv));
+        svv = _mm_add_pd(svv, _mm_mul_pd(wv, dv));
+    };
+    if (bits == ~0u && std::is_same_v<Fraction, WholePixel>) {  // a full run inside: pixels in pairs, no bit scan
+        const float* q = px.at(x0, y);
+        for (int i = 0; i < 32; i += 2, q += 8) pair(q, q + 4, _mm_set1_pd(1.0));
+        bits = 0;
+    }
+    while (bits != 0) {
+        const int xa = x0 + __builtin_ctz(bits);
+        bits &= bits - 1;
+        const double fa = f(xa);
+        const float* qb = kNone;
+        double fb = 0.0;
+        if (bits != 0) {
+            const int xb = x0 + __builtin_ctz(bits);
+            bits &= bits - 1;
+            qb = px.at(xb, y);
+            fb = f(xb);
+        }
+        pair(px.at(xa, y), qb, _mm_set_pd(fb, fa));
+    }
+    alignas(16) double l[6][2];
+    _mm_store_pd(l[0], s0), _mm_store_pd(l[1], su), _mm_store_pd(l[2], sv);
+    _mm_store_pd(l[3], suu), _mm_store_pd(l[4], suv), _mm_store_pd(l[5], svv);
+    for (int lane = 0; lane < 2; ++lane)
+        sums.add(Sums{l[0][lane], l[1][lane], l[2][lane], l[3][lane], l[4][lane], l[5][lane]});
+#else
     Sums a, b;
     while (bits != 0) {
         const int xa = x0 + __builtin_ctz(bits);
@@ -239,6 +316,7 @@ void accumulate(const Pixels& px, int x0, int y, uint32_t bits, dvec2 shift, Fra
     }
     sums.add(a);
     sums.add(b);
+#endif
 }
 
 /// The masks of the 4-neighbours of every pixel of a run, and which neighbours are inside the image.
@@ -284,9 +362,8 @@ void scanRun(const Pixels& px, const std::vector<RunMask>& masks, int y, int r, 
     const uint32_t contour = subpixel ? c.vis & ((a.visL & (a.inL ^ c.in)) | (a.visR & (a.inR ^ c.in)) |
                                                  (a.visD & (a.inD ^ c.in)) | (a.visU & (a.inU ^ c.in)))
                                       : 0u;
-    const auto whole = [](int) { return 1.0; };
     const auto covered = [&](int x) { return contourFraction(px, x, y, th.T); };
-    accumulate(px, x0, y, c.in & ~contour, shift, whole, sums.m);
+    accumulate(px, x0, y, c.in & ~contour, shift, WholePixel{}, sums.m);
     if (contour) accumulate(px, x0, y, contour, shift, covered, sums.m);
 }
 
