@@ -13,16 +13,16 @@ namespace {
 
 /// Distance from the mirror direction along (du, dv) at which the lobe falls below `level`; -1 if the
 /// horizon comes first, or the lobe never falls within pi/2.
-double halfWidthAlong(const measure::LobeFunction& f, double du, double dv, double level) {
-    double lo = 0, hi = 1e-12;  // far below any lobe float or double can hold (roughness >= 1e-7)
+double halfWidthAlong(const TwinSampler& f, double du, double dv, double level) {
+    double lo = 0, hi = 1e-12, L = 0;  // far below any lobe float or double can hold (roughness >= 1e-7)
     for (;; lo = hi, hi *= 2) {
         if (hi > kPi / 2) return -1;
-        if (!f.visible(hi * du, hi * dv)) return -1;
-        if (f.lobe(hi * du, hi * dv) < level) break;
+        if (!f.at(hi * du, hi * dv, L)) return -1;
+        if (L < level) break;
     }
-    for (int i = 0; i < 40; ++i) {  // to 1e-12 of the bracket: far below the 1e-3 the flags need
+    for (int i = 0; i < 20; ++i) {  // to 1e-6 of the bracket: far below the 1e-3 the flags need
         const double mid = 0.5 * (lo + hi);
-        (f.visible(mid * du, mid * dv) && f.lobe(mid * du, mid * dv) >= level ? lo : hi) = mid;
+        (f.at(mid * du, mid * dv, L) && L >= level ? lo : hi) = mid;
     }
     return hi;
 }
@@ -35,7 +35,7 @@ void replace(measure::Shape& s, measure::Flag from, measure::Flag to) {
 }  // namespace
 
 LobeWidths twinLobeWidths(const render::Scene& scene, double threshold) {
-    const measure::LobeFunction f = twinLobe(scene);
+    const TwinSampler f(scene);
     LobeWidths w;
     w.peak = f.lobe(0, 0);
     if (!(w.peak > 0)) return w;

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -34,23 +35,32 @@ PinholeCamera measurementCamera(const render::Scene& scene, const dvec3& center,
                                           fovDeg, w, h);
 }
 
+TwinSampler::TwinSampler(const render::Scene& scene)
+    : m_scene(scene), m_chart(scene.light.chart()), m_eye(render::eyePosition(scene)), m_wi(scene.light.direction()) {
+    render::requireTwin(scene, "the CPU lobe");
+}
+
+bool TwinSampler::at(double u, double v, double& L) const {
+    const dvec3 we = m_chart.direction(u, v);
+    if (we.z <= 0.0) return false;
+    L = brdf::luminance(render::surfaceRadiance(m_scene, m_wi, m_eye, we));
+    return true;
+}
+
 measure::LobeFunction twinLobe(const render::Scene& scene) {
     render::requireTwin(scene, "the CPU lobe");
+    const auto copy = std::make_shared<const render::Scene>(scene);  // the functions may outlive `scene`
+    const auto sampler = std::make_shared<const TwinSampler>(*copy);
     const MirrorChart chart = scene.light.chart();
-    const dvec3 eye = render::eyePosition(scene);
     measure::LobeFunction f;
-    f.lobe = [=](double u, double v) {
-        const dvec3 we = chart.direction(u, v);
-        if (we.z <= 0.0) return 0.0;
-        return brdf::luminance(render::surfaceRadiance(scene, eye, we));
-    };
-    f.visible = [=](double u, double v) { return chart.direction(u, v).z > 0.0; };
+    f.lobe = [copy, sampler](double u, double v) { return sampler->lobe(u, v); };
+    f.visible = [chart](double u, double v) { return chart.direction(u, v).z > 0.0; };
     return f;
 }
 
 std::array<double, 4> twinRadii(const render::Scene& scene, double threshold) {
     render::requireTwin(scene, "the lobe width seed");
-    const measure::LobeFunction f = twinLobe(scene);
+    const TwinSampler f(scene);
     const double l0 = f.lobe(0, 0);
     if (!(l0 > 0)) return {deg2rad(30.0), deg2rad(30.0), deg2rad(30.0), deg2rad(30.0)};
     std::array<double, 4> radii{};
@@ -58,7 +68,7 @@ std::array<double, 4> twinRadii(const render::Scene& scene, double threshold) {
     for (int k = 0; k < 4; ++k) {
         double lo = 0, hi = 1e-9;
         while (hi < kPi / 2 && f.lobe(hi * du[k], hi * dv[k]) >= threshold * l0) lo = hi, hi *= 2;
-        for (int i = 0; i < 60; ++i) {
+        for (int i = 0; i < 30; ++i) {  // to 1e-9 of the bracket: a seed, which the aiming renders correct
             const double mid = 0.5 * (lo + hi);
             (f.lobe(mid * du[k], mid * dv[k]) >= threshold * l0 ? lo : hi) = mid;
         }
@@ -74,8 +84,10 @@ double twinHalfWidth(const render::Scene& scene, double threshold) {
 
 namespace {
 
-/// Draws one render of the measurement view: camera, sub-pixel jitter, crop (empty: the whole frame).
-using ViewFn = std::function<void(const PinholeCamera&, dvec2, const PixelRect&, ImageF&)>;
+/// Draws one render of the measurement view: camera, sub-pixel jitter, crop (empty: the whole frame), and
+/// CPU work to do while it is drawn (may be empty; GL runs it between the draw and the readback).
+using ViewFn =
+    std::function<void(const PinholeCamera&, dvec2, const PixelRect&, ImageF&, const std::function<void()>&)>;
 
 /// The last aiming render and its region's box, from which the final frame was set.
 struct Aim {
@@ -98,7 +110,7 @@ struct PartAim {
 void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part);  // below
 
 Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup, Frame& frame, Measurement& m,
-             const PartAim* part = nullptr) {
+             const PartAim* part = nullptr, const std::function<void()>& whileFirstDrawn = {}) {
     thread_local ImageF coarse;  // reused across calls: no allocation per measurement
     if (!part) {  // a part's frame is seeded from its survey box by the caller
         const double r = twinHalfWidth(scene, setup.options.threshold);
@@ -106,6 +118,7 @@ Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup&
             std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(r, 1.3)) / setup.fill)), kMinFovDeg, kMaxFovDeg);
     }
     Aim aim;
+    bool first = true;
     while (m.renders < setup.maxRenders - 1) {
         // The aiming renders keep the final frame's shape, so what fits them fits the final render.
         const double longest = std::max(setup.width, setup.height);
@@ -113,7 +126,8 @@ Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup&
         const int ch = std::max(8, int(std::lround(setup.coarseSize * setup.height / longest)));
         aim.camera = measurementCamera(scene, frame.center, frame.fovDeg, cw, ch);
         auto t0 = Clock::now();
-        view(aim.camera, dvec2(0.0), PixelRect{}, coarse);
+        view(aim.camera, dvec2(0.0), PixelRect{}, coarse, first ? whileFirstDrawn : std::function<void()>{});
+        first = false;
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
@@ -158,7 +172,7 @@ measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixel
     m.shadedPixels = crop.empty() ? long(cam.width) * cam.height : long(crop.width) * crop.height;
     if (n <= 1) {
         auto t0 = Clock::now();
-        view(cam, dvec2(0.0), crop, img);
+        view(cam, dvec2(0.0), crop, img, {});
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
@@ -171,7 +185,7 @@ measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixel
     measure::Supersampler ss(w, h, n * n);
     for (const dvec2 jitter : measure::jitterGrid(n)) {
         auto t0 = Clock::now();
-        view(cam, jitter, crop, img);
+        view(cam, jitter, crop, img, {});
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
@@ -335,11 +349,18 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     Measurement m;
     m.framing = setup.fovDeg > 0 ? "fixed" : "automatic";
     Frame frame{liftAboveHorizon(scene.light.chart().wr()), setup.fovDeg};
+    // The twin's widths: for the crop's decision and the diagnoses (computed once: ~1000 twin evaluations),
+    // while the first aiming render is drawn: this core left idle there made the final render slower.
+    LobeWidths widths;
+    bool haveWidths = false;
+    const std::function<void()> findWidths = [&] {
+        widths = twinLobeWidths(scene, setup.options.threshold);
+        haveWidths = true;
+    };
     Aim aim;
-    if (setup.fovDeg <= 0) aim = aimFrame(view, scene, setup, frame, m);
+    if (setup.fovDeg <= 0) aim = aimFrame(view, scene, setup, frame, m, nullptr, findWidths);
+    if (!haveWidths) findWidths();
     const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
-    // The twin's widths: for the crop's decision and the diagnoses (computed once: ~1000 twin evaluations).
-    const LobeWidths widths = twinLobeWidths(scene, setup.options.threshold);
     const PixelRect crop = setup.crop && aim.good && aimResolves(widths, setup, frame) ? cropOf(aim, cam) : PixelRect{};
     m.shape = analyse(view, cam, crop, setup, m);
     // The region reached the crop's edge: the crop was too tight, not the frame. Measure the whole frame.
@@ -362,8 +383,9 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
     // A peak far from the mirror direction (retroreflection): framed and measured about the peak.
     if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureGl(renderer, *framed, setup);
     return measureWith(
-        [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img) {
-            renderer.render(scene, cam, render::Output::Measure, img, jitter, crop);
+        [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img,
+            const std::function<void()>& whileDrawing) {
+            renderer.render(scene, cam, render::Output::Measure, img, jitter, crop, whileDrawing);
         },
         Path::Gl, scene, setup);
 }
@@ -371,7 +393,9 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
 Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup) {
     if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureCpu(*framed, setup);
     return measureWith(
-        [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img) {
+        [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img,
+            const std::function<void()>& whileDrawing) {
+            if (whileDrawing) whileDrawing();
             render::renderMeasureCpu(scene, cam, img, jitter, crop, setup.threads);
         },
         Path::Cpu, scene, setup);

@@ -39,8 +39,27 @@ struct Measurement {
 /// twin-based below, it throws InputError for a .brdf scene (render::requireTwin).
 measure::LobeFunction twinLobe(const render::Scene& scene);
 
+/// twinLobe's two functions in one evaluation, with what the scene fixes (chart, eye, the light's direction)
+/// computed once: for searches that call the twin thousands of times per measurement.
+class TwinSampler {
+public:
+    explicit TwinSampler(const render::Scene& scene);
+    /// False where (u, v) is below the horizon; else true, with L the twin's luminance there.
+    bool at(double u, double v, double& L) const;
+    /// The luminance, 0 below the horizon (twinLobe's lobe).
+    double lobe(double u, double v) const {
+        double L = 0;
+        return at(u, v, L) ? L : 0.0;
+    }
+
+private:
+    const render::Scene& m_scene;  ///< outlives the sampler (twinLobe's functions keep a copy)
+    MirrorChart m_chart;
+    dvec3 m_eye, m_wi;
+};
+
 /// Angular radii (radians) at which the twin's lobe falls to `threshold` of its value at the mirror
-/// direction, along +u, -u, +v, -v (bisection to 1e-18 of the bracket; the horizon ends a ray too).
+/// direction, along +u, -u, +v, -v (bisection to 1e-9 of the bracket; the horizon ends a ray too).
 std::array<double, 4> twinRadii(const render::Scene& scene, double threshold);
 /// The largest of twinRadii: a seed for framing and for the reference's search disc.
 double twinHalfWidth(const render::Scene& scene, double threshold);

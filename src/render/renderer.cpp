@@ -144,12 +144,15 @@ void requireTwin(const Scene& s, const std::string& what) {
 }
 
 dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we) {
+    return surfaceRadiance(s, s.light.direction(), eye, we);
+}
+
+dvec3 surfaceRadiance(const Scene& s, const dvec3& lightDirection, const dvec3& eye, const dvec3& we) {
     if (s.brdfFile) requireTwin(s, "the double-precision evaluation");  // checked first: no string per call
-    if (s.light.type == LightType::Directional)
-        return brdf::radiance(s.brdf, s.light.direction(), we, s.light.irradiance);
+    if (s.light.type == LightType::Directional) return brdf::radiance(s.brdf, lightDirection, we, s.light.irradiance);
     const dvec3 p = eye - (eye.z / we.z) * we;  // where the eye's ray meets the plane
     if (s.light.area()) return areaRadianceExact(s, p, we);
-    const dvec3 toLight = s.light.position() - p;
+    const dvec3 toLight = s.light.distance * lightDirection - p;  // Light::position()
     const double d2 = glm::dot(toLight, toLight);
     return brdf::radiance(s.brdf, toLight / std::sqrt(d2), we, s.light.intensity / d2);
 }
@@ -363,7 +366,7 @@ void Renderer::readback(ImageF& image) {
 }
 
 void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image, dvec2 jitter,
-                      const PixelRect& crop) {
+                      const PixelRect& crop, const std::function<void()>& whileDrawing) {
     // Compiled (or found) first, under its own time limit: program() disarms the watchdog when it is done.
     const gl::Program& prog = program(scene, out);
     Watchdog::Scope guard{nullptr};
@@ -375,6 +378,10 @@ void Renderer::render(const Scene& scene, const PinholeCamera& camera, Output ou
         guard.dog = &m_watchdog;
     }
     drawWith(prog, scene, camera, jitter, crop);
+    if (whileDrawing) {
+        glFlush();  // llvmpipe starts rasterising now, not at the readback
+        whileDrawing();
+    }
     readback(image);  // waits for the draw: the watchdog covers both
 }
 

@@ -11,6 +11,7 @@
 #include "render/shader_source.hpp"
 #include "render/watchdog.hpp"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -39,8 +40,10 @@ public:
     /// channels of each output). `jitter` moves every pixel's sample point by that many pixels (the
     /// shader's uJitter; (0, 0) = the pixel centre), for supersampling. A non-empty `crop` draws and reads
     /// only those pixels of the camera's image (the viewport): `image` is then crop.width x crop.height.
+    /// `whileDrawing`, if given, runs on this thread after the draw is submitted and before the readback waits
+    /// for it: CPU work beside llvmpipe's, which also keeps this core from idling before the next render.
     void render(const Scene& scene, const PinholeCamera& camera, Output out, ImageF& image, dvec2 jitter = dvec2(0.0),
-                const PixelRect& crop = {});
+                const PixelRect& crop = {}, const std::function<void()>& whileDrawing = {});
     ImageF render(const Scene& scene, const PinholeCamera& camera, Output out);
 
     /// The two halves of render(), for benchmarks: draw() queues the frame, finish() waits for it,

@@ -83,6 +83,9 @@ dvec3 eyePosition(const Scene& s);
 /// f(wi, we) E cos(theta_i), with wi and E those of the point the ray meets. Double-precision twin of
 /// the shader's main(): for a directional light `eye` is irrelevant. Throws InputError for a .brdf scene.
 dvec3 surfaceRadiance(const Scene& s, const dvec3& eye, const dvec3& we);
+/// The same with the light's direction s.light.direction() given: a search that evaluates one scene many
+/// times computes it once (its degrees' cos and sin were a third of a twin evaluation).
+dvec3 surfaceRadiance(const Scene& s, const dvec3& lightDirection, const dvec3& eye, const dvec3& we);
 /// Whether the CPU double twin can evaluate the scene (false for a .brdf file).
 inline bool hasTwin(const Scene& s) { return !s.brdfFile; }
 /// Throws InputError "PATH: no CPU twin for a .brdf file (`what` needs one)" for a .brdf scene.

@@ -232,3 +232,18 @@ TEST_CASE("render::Renderer every pixel is written: no earlier frame shows throu
         }
     }
 }
+
+// The work a measurement does while a render is drawn (the twin's widths, measurement/measure_scene.cpp) runs
+// once, on the calling thread, and the pixels are the render's own.
+TEST_CASE("render::Renderer work given to a render runs once while it is drawn and leaves its pixels alone") {
+    auto& env = test::glEnv();
+    const render::Scene s = makeScene(brdf::Model::GGX, 60);
+    const PinholeCamera cam = measureCamera(s, 20, 64, 48);
+    const ImageF alone = env.renderer->render(s, cam, render::Output::Measure);
+    ImageF img;
+    int runs = 0;
+    env.renderer->render(s, cam, render::Output::Measure, img, dvec2(0.0), PixelRect{}, [&] { ++runs; });
+    CHECK(runs == 1);
+    REQUIRE(img.data.size() == alone.data.size());
+    CHECK(img.data == alone.data);
+}
