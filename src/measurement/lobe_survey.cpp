@@ -29,8 +29,9 @@ const std::vector<double>& rings() {
 struct Lobe {
     const render::Scene& scene;
     dvec3 eye;
+    dvec3 wi = scene.light.direction();  // once: its degrees' cos and sin were a third of an evaluation
     double operator()(const dvec3& we) const {
-        return we.z > 0.0 ? brdf::luminance(render::surfaceRadiance(scene, eye, we)) : 0.0;
+        return we.z > 0.0 ? brdf::luminance(render::surfaceRadiance(scene, wi, eye, we)) : 0.0;
     }
 };
 
@@ -114,12 +115,18 @@ LobeSurvey scan(const render::Scene& scene) {
     std::vector<dvec3>& dir = s.directions;
     value.resize(size_t(K) * size_t(J));
     dir.resize(value.size());
-    for (int k = 0; k < K; ++k)
+    // ringDirection's products from each ring's and each azimuth's cos and sin, computed once (the same numbers).
+    std::vector<double> cosAz(static_cast<size_t>(J)), sinAz(static_cast<size_t>(J));
+    for (int j = 0; j < J; ++j) cosSinDeg(s.azimuth0Deg + 360.0 * j / J, cosAz[size_t(j)], sinAz[size_t(j)]);
+    for (int k = 0; k < K; ++k) {
+        double ct, st;
+        cosSinDeg(90.0 - s.ringsDeg[size_t(k)], ct, st);
         for (int j = 0; j < J; ++j) {
             const size_t i = size_t(k) * size_t(J) + size_t(j);
-            dir[i] = ringDirection(s.ringsDeg[size_t(k)], s.azimuth0Deg + 360.0 * j / J);
+            dir[i] = {st * cosAz[size_t(j)], st * sinAz[size_t(j)], ct};
             value[i] = lobe(dir[i]);
         }
+    }
     // Peak: climb from the mirror, light and normal directions and from the grid's four best local maxima.
     std::vector<std::pair<double, dvec3>> starts;
     for (const dvec3& c : {mirror.wr(), scene.light.direction(), dvec3(0, 0, 1)}) {
