@@ -224,6 +224,7 @@ void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part) {
     };
     thread_local std::vector<Run> runs;
     thread_local std::vector<int> up, rowStart, brightest;
+    thread_local std::vector<char> another;  // per component (at its root): another part owns it
     runs.clear();
     rowStart.assign(size_t(H) + 1, 0);
     auto L = [&](int x, int y) { return double(img.data[4 * (size_t(y) * size_t(W) + size_t(x))]); };
@@ -263,6 +264,7 @@ void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part) {
         for (int x = run.x0; x < run.x1; ++x)
             if (best < 0 || L(x, run.y) > L(best % W, best / W)) best = run.y * W + x;
     }
+    another.assign(runs.size(), 0);
     for (size_t r = 0; r < runs.size(); ++r) {
         if (find(int(r)) != int(r)) continue;  // one decision per component, at its root
         const float* q = &img.data[4 * size_t(brightest[r])];
@@ -277,10 +279,10 @@ void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part) {
                 }
             }
         }
-        brightest[r] = owner == part.part ? -1 : -2;  // now: -2 where the component is another part's
+        another[r] = owner != part.part;
     }
     for (size_t r = 0; r < runs.size(); ++r) {
-        if (brightest[size_t(find(int(r)))] != -2) continue;
+        if (!another[size_t(find(int(r)))]) continue;
         const Run& run = runs[r];
         for (int x = run.x0; x < run.x1; ++x) img.data[4 * (size_t(run.y) * size_t(W) + size_t(x))] = 0.f;
     }
