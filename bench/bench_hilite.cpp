@@ -10,15 +10,15 @@
 
 #include "brdf/merl.hpp"
 #include "brdf/spectral.hpp"
-#include "experiments/fit.hpp"
-#include "measurement/measure_scene.hpp"
-#include "measurement/session.hpp"
+#include "hilite/experiments/fit.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "hilite/measurement/session.hpp"
 #include "measurement/tolerance.hpp"
 #include "gl/context.hpp"
 #include "render/cpu_view.hpp"
 #include "render/renderer.hpp"
 #include "render/shader_source.hpp"
-#include "scene/resolve.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -168,9 +168,9 @@ void BM_Analysis(benchmark::State& state) {
     const int size = int(state.range(0));
     const render::Scene s = ggx(60);
     const ImageF img = env().renderer->render(s, frameOf(s, size), render::Output::Measure);
-    measure::Options opt;
+    analysis::Options opt;
     opt.subpixel = state.range(1) != 0;
-    for (auto _ : state) benchmark::DoNotOptimize(measure::measureImage(img.data.data(), size, size, opt));
+    for (auto _ : state) benchmark::DoNotOptimize(analysis::measureImage(img.data.data(), size, size, opt));
     state.SetLabel(opt.subpixel ? "subpixel" : "pixel");
 }
 BENCHMARK(BM_Analysis)->ArgsProduct({{128, 256, 512, 1024, 2048}, {0, 1}})->Unit(benchmark::kMillisecond);

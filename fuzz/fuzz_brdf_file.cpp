@@ -3,8 +3,8 @@
 // The input is split at its first "\n@@\n": the part before is the file, the part after the assignments
 // given to it (without the marker, the whole input is the file and its own text the assignments).
 
-#include "brdf_file/brdf_file.hpp"
-#include "core/error.hpp"
+#include "hilite/brdf_file/brdf_file.hpp"
+#include "hilite/core/error.hpp"
 
 #include <cstddef>
 #include <cstdint>

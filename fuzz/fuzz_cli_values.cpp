@@ -1,8 +1,8 @@
 // libFuzzer target: the parameter value readers (--incidence lists and ranges, --size, --f0 ...), each
 // through the registry's check and scene::resolve, as a flag and a scene file give them.
 
-#include "core/error.hpp"
-#include "scene/resolve.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <cstddef>
 #include <cstdint>

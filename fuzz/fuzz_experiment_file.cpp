@@ -1,7 +1,7 @@
 // libFuzzer target: experiment files, parsed and expanded into validated configurations.
 
 #include "experiments/experiment.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -2,7 +2,7 @@
 // a crash, a sanitizer report or another exception is a bug. The table read is evaluated once (D, Lambda).
 
 #include "brdf/ndf_table.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -3,7 +3,7 @@
 // as --resume and merge read them, checked against the experiment's configurations by fingerprint, and
 // written as CSV; only InputError may come out.
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/results.hpp"
 

@@ -1,8 +1,8 @@
 // libFuzzer target: scene files (TOML) against the parameter registry, then resolved. Any input must end
 // in a scene or an InputError; a crash, a sanitizer report or another exception is a bug.
 
-#include "core/error.hpp"
-#include "scene/scene_file.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/scene/scene_file.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -22,10 +22,12 @@ the first GL call (gl_backend=, else $HILITE_GL_BACKEND, else auto).
 import os as _os
 
 _here = _os.path.dirname(_os.path.abspath(__file__))
-# In the build tree (<build>/python/hilite) the shaders, data and the hilite executable (which runs a .brdf
-# shader's probe) are <build>/share/hilite and <build>/bin/hilite; installed, the library finds its own.
+# In the build tree (<build>/python/hilite) the shaders, data and the probe helper hilite-probe (which runs a
+# .brdf shader's probe) are <build>/share/hilite and <build>/bin/hilite-probe; installed (pip or cmake), the
+# package carries them (share/, libexec/) and the module finds them beside itself.
 _build_share = _os.path.join(_here, "..", "..", "share", "hilite")
-if "HILITE_SHARE_DIR" not in _os.environ and _os.path.isdir(_os.path.join(_build_share, "shaders")):
+if ("HILITE_SHARE_DIR" not in _os.environ and not _os.path.isdir(_os.path.join(_here, "share"))
+        and _os.path.isdir(_os.path.join(_build_share, "shaders"))):
     _os.environ["HILITE_SHARE_DIR"] = _os.path.normpath(_build_share)
 
 from . import _hilite  # noqa: E402
@@ -37,11 +39,9 @@ from . import brdf  # noqa: E402,F401
 MachineError = _hilite.MachineError
 __version__ = _hilite.version
 
-_build_exe = _os.path.join(_here, "..", "..", "bin", "hilite")
-if _os.environ.get("HILITE_EXECUTABLE"):
-    _hilite.set_probe_executable(_os.environ["HILITE_EXECUTABLE"])
-elif _os.path.isfile(_build_exe):
-    _hilite.set_probe_executable(_os.path.normpath(_build_exe))
+_build_probe = _os.path.join(_here, "..", "..", "bin", "hilite-probe")
+if not _os.path.isdir(_os.path.join(_here, "libexec")) and _os.path.isfile(_build_probe):
+    _hilite.set_probe_executable(_os.path.normpath(_build_probe))
 
 
 def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None):

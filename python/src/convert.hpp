@@ -2,9 +2,9 @@
 // Between Python and hilite's library types: scenes as (parameter, text, origin) items, rows as Python
 // objects, images as numpy arrays (row 0 the top, as numpy and matplotlib show them).
 
-#include "core/image.hpp"
-#include "scene/registry.hpp"
-#include "scene/resolve.hpp"
+#include "hilite/core/image.hpp"
+#include "hilite/scene/registry.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>

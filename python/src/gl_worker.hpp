@@ -4,7 +4,7 @@
 // calls arrive. A GL context is current on one thread (gl/context.hpp), while Python calls come from any
 // thread; the callers wait with the GIL released (module.cpp), so other Python threads keep running.
 
-#include "measurement/session.hpp"
+#include "hilite/measurement/session.hpp"
 
 #include <condition_variable>
 #include <cstdint>

@@ -19,8 +19,8 @@ foreach(f __init__.py __init__.pyi brdf.pyi py.typed)
   endif()
 endforeach()
 # From another folder, with only the installed tree: PYTHONPATH is the prefix's dist-packages.
-execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_DIR} HILITE_SHARE_DIR=${prefix}/share/hilite
-    HILITE_EXECUTABLE=${prefix}/bin/hilite
+# No HILITE_SHARE_DIR: the package finds its share files and probe helper beside itself.
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=HILITE_SHARE_DIR PYTHONPATH=${prefix}/${PYTHON_DIR}
     ${PYTHON} -c "import hilite, sys; assert hilite.__file__.startswith('${prefix}'), hilite.__file__; r = hilite.measure(model='ggx', roughness=0.1, incidence=60, size=128); print(r['aspect']); sys.exit(0 if 0.45 < r['aspect'] < 0.55 else 1)"
   WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)

@@ -3,8 +3,8 @@
 // of incidence, rho_hh = (1/pi) int rho(wi) cos(theta_i) dwi — the seed's single number for how much of
 // uniform illumination a surface reflects. Lambert gives rho_hh = rho exactly.
 
-#include "brdf/params.hpp"
-#include "core/math.hpp"
+#include "hilite/brdf/params.hpp"
+#include "hilite/core/math.hpp"
 
 namespace hilite::brdf {
 

@@ -1,7 +1,7 @@
-#include "brdf/colour.hpp"
+#include "hilite/brdf/colour.hpp"
 
 #include "brdf/spectral.hpp"
-#include "brdf/terms.hpp"
+#include "hilite/brdf/terms.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "brdf/dispatch.hpp"
 
 #include "brdf/energy.hpp"
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"

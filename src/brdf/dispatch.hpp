@@ -5,8 +5,8 @@
 // (used by brdf/evaluate.cpp). Which row a BRDF takes is decided here alone, so a mapping such as
 // Blinn-Phong's Beckmann Lambda (blinnExponentToBeckmann) is chosen in one place for both languages.
 
-#include "brdf/params.hpp"
-#include "brdf/terms.hpp"
+#include "hilite/brdf/params.hpp"
+#include "hilite/brdf/terms.hpp"
 
 #include <vector>
 

@@ -1,6 +1,6 @@
 #include "brdf/energy.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
 

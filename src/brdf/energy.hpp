@@ -14,8 +14,8 @@
 // Both terms depend on the directions through mu_i = wi.z and mu_o = wo.z alone. Derivation and measured
 // accuracy: docs/terms.md, "Energy terms".
 
-#include "brdf/params.hpp"
-#include "core/math.hpp"
+#include "hilite/brdf/params.hpp"
+#include "hilite/core/math.hpp"
 
 #include <memory>
 #include <string>

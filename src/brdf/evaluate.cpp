@@ -1,4 +1,4 @@
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include "brdf/dispatch.hpp"
 #include "brdf/merl.hpp"

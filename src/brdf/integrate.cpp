@@ -3,7 +3,7 @@
 #include "brdf/merl.hpp"
 
 #include "brdf/energy.hpp"
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/ndf_table.hpp"
 #include "core/quadrature.hpp"
 

@@ -3,8 +3,8 @@
 // directional-hemispherical reflectance (albedo). Lobes as narrow as n = 1e4 or alpha = 0.02 are
 // resolved by Gauss-Legendre panels graded geometrically about the lobe's peak, ending on the horizon.
 
-#include "brdf/params.hpp"
-#include "core/math.hpp"
+#include "hilite/brdf/params.hpp"
+#include "hilite/core/math.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 #include "brdf/materials.hpp"
 
-#include "brdf/terms.hpp"
+#include "hilite/brdf/terms.hpp"
 
 namespace hilite::brdf {
 

@@ -3,7 +3,7 @@
 // A preset names the Fresnel mode it implies (dielectric, conductor, schlick-only or spectral) and the
 // parameters of that mode; Schlick's F0 of a dielectric or conductor is its exact F at normal incidence.
 
-#include "brdf/params.hpp"
+#include "hilite/brdf/params.hpp"
 
 #include <string>
 #include <vector>

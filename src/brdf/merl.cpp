@@ -1,7 +1,7 @@
 #include "brdf/merl.hpp"
 
-#include "brdf/evaluate.hpp"
-#include "core/error.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 
 #include <sys/stat.h>

@@ -17,8 +17,8 @@
 // nearest = floor(u) clamped (GL_NEAREST), multilinear = weights between bin centres i + 0.5 with theta clamped
 // to the edge and phi_d wrapped (GL_LINEAR with CLAMP_TO_EDGE / REPEAT).
 
-#include "brdf/params.hpp"
-#include "core/math.hpp"
+#include "hilite/brdf/params.hpp"
+#include "hilite/core/math.hpp"
 
 #include <cstdint>
 #include <memory>

@@ -2,7 +2,7 @@
 
 #include "core/csv.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
 

@@ -11,7 +11,7 @@
 // '#' starts a comment, blank lines are skipped, and a first line that is not two numbers is a header.
 // Errors: one InputError naming file:line.
 
-#include "core/math.hpp"
+#include "hilite/core/math.hpp"
 
 #include <memory>
 #include <string>

@@ -1,4 +1,4 @@
-#include "brdf/params.hpp"
+#include "hilite/brdf/params.hpp"
 
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"

@@ -2,7 +2,7 @@
 
 #include "core/csv.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,8 @@
 // reflector (F = 1) exactly white (1, 1, 1); before it the white is M XYZ(D65) / Y(D65), off (1, 1, 1) by
 // < 1e-3 from the 4-digit matrix (kept in Spectrum::whiteBeforeNormalization).
 
-#include "brdf/terms.hpp"
-#include "core/math.hpp"
+#include "hilite/brdf/terms.hpp"
+#include "hilite/core/math.hpp"
 
 #include <memory>
 #include <mutex>

@@ -1,6 +1,6 @@
-#include "brdf_file/brdf_file.hpp"
+#include "hilite/brdf_file/brdf_file.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
 

@@ -5,8 +5,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "core/error.hpp"
-#include "experiments/bounces.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/experiments/bounces.hpp"
 
 #include <nlohmann/json.hpp>
 

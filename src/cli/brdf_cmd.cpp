@@ -4,14 +4,14 @@
 // .binary file (brdf/merl.hpp). A table by default; with --json one JSON object per line.
 
 #include "brdf/bihemispherical.hpp"
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/strip.hpp"
 #include "io/image_io.hpp"

@@ -1,7 +1,7 @@
 #include "cli/cli.hpp"
 
 #include "cli/commands.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -47,7 +47,6 @@ int run(int argc, char** argv) {
     add("fit", "fit analytic models (phong, blinn, beckmann, ggx, ...) to a measured or given highlight and rank them", &addFit);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
-    add("probe-shader", "", &addProbeShader);  // hidden: the child process of cli/shader_probe.cpp
     try {
         std::vector<std::string> args(argv + 1, argv + argc);
         std::reverse(args.begin(), args.end());  // CLI11 takes the vector last argument first

@@ -23,7 +23,6 @@ Action addRun(CLI::App& app);
 Action addMerge(CLI::App& app);
 Action addExplain(CLI::App& app);
 Action addFit(CLI::App& app);  ///< cli/fit_cmd.cpp
-Action addProbeShader(CLI::App& app);  ///< cli/shader_probe.cpp
 /// `brdf bounces` (cli/bounces_cmd.cpp): the subcommand, added to `brdf`, and its action.
 std::pair<CLI::App*, Action> addBrdfBounces(CLI::App& brdf);
 

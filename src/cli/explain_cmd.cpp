@@ -4,7 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
 #include "gl/program.hpp"

@@ -3,9 +3,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
-#include "experiments/fit.hpp"
+#include "hilite/experiments/fit.hpp"
 #include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>

@@ -2,9 +2,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "experiments/results.hpp"
-#include "measurement/session.hpp"
+#include "hilite/measurement/session.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "io/image_io.hpp"
 #include "measurement/shader_probe.hpp"
 #include "render/renderer.hpp"

@@ -4,7 +4,7 @@
 // joins them into what a single run writes.
 
 #include "cli/commands.hpp"
-#include "experiments/run.hpp"
+#include "hilite/experiments/run.hpp"
 
 #include <unistd.h>
 

@@ -2,7 +2,7 @@
 
 #include "cli/commands.hpp"
 #include "core/text.hpp"
-#include "scene/scene_file.hpp"
+#include "hilite/scene/scene_file.hpp"
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 // validator, help (range, unit, default) and group (its scene-file table). Values land in a
 // scene::Values with no origin, so errors name the flag; --scene FILE adds the file's values under them.
 
-#include "scene/resolve.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -1,4 +1,4 @@
-#include "core/camera.hpp"
+#include "hilite/core/camera.hpp"
 
 namespace hilite {
 

@@ -1,4 +1,4 @@
-#include "core/chart.hpp"
+#include "hilite/core/chart.hpp"
 
 namespace hilite {
 

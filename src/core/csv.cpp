@@ -1,6 +1,6 @@
 #include "core/csv.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "core/files.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -5,7 +5,7 @@
 // The error estimate is |K15 - G7| per panel: G7's own error, so an upper bound on K15's for smooth
 // integrands (QUADPACK's (200 |K - G|)^1.5 rescaling is left out: it is tuned for lower precision).
 
-#include "core/math.hpp"
+#include "hilite/core/math.hpp"
 
 #include <algorithm>
 #include <array>

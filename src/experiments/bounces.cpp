@@ -1,14 +1,14 @@
-#include "experiments/bounces.hpp"
+#include "hilite/experiments/bounces.hpp"
 
-#include "brdf/colour.hpp"
+#include "hilite/brdf/colour.hpp"
 #include "brdf/energy.hpp"
 #include "brdf/integrate.hpp"
-#include "core/error.hpp"
-#include "core/image.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/core/image.hpp"
 #include "core/text.hpp"
 #include "io/image_io.hpp"
 #include "io/label.hpp"
-#include "measurement/row.hpp"
+#include "hilite/measurement/row.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -1,11 +1,12 @@
 #include "experiments/experiment.hpp"
 
+#include "core/install_paths.hpp"
 #include "brdf/materials.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "io/image_io.hpp"
-#include "measurement/row.hpp"
-#include "scene/scene_file.hpp"
+#include "hilite/measurement/row.hpp"
+#include "hilite/scene/scene_file.hpp"
 
 #include "experiments/reports.hpp"
 
@@ -325,11 +326,10 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
 
 std::string findExperiment(const std::string& name) {
     if (access(name.c_str(), R_OK) == 0) return name;
-    char buf[4096];
-    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-    std::string exeDir = n > 0 ? std::string(buf, size_t(n)) : "";
-    exeDir = exeDir.substr(0, exeDir.rfind('/'));
-    for (const std::string& dir : {exeDir + "/../share/hilite/experiments", std::string("experiments")})
+    std::vector<std::string> dirs;
+    for (const SharePlace& place : sharePlaces()) dirs.push_back(place.dir + "/experiments");
+    dirs.push_back("experiments");
+    for (const std::string& dir : dirs)
         for (const std::string& cand : {dir + "/" + name, dir + "/" + name + ".toml"})
             if (access(cand.c_str(), R_OK) == 0) return cand;
     throw InputError("run: no experiment '" + name + "' (give a file, or a name from experiments/)");

@@ -3,15 +3,15 @@
 // scene file), [[sweep]] axes (key + values or range), optional [match] (lobe widths matched at normal
 // incidence), [[plot]], [contact_sheet] and [summary]. See experiments/*.toml and the README.
 
-#include "experiments/bounces.hpp"
-#include "experiments/fit.hpp"
+#include "hilite/experiments/bounces.hpp"
+#include "hilite/experiments/fit.hpp"
 #include "experiments/pareto.hpp"
 #include "experiments/plot.hpp"
 #include "gl/context.hpp"
-#include "measurement/measure_scene.hpp"
-#include "measurement/session.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "hilite/measurement/session.hpp"
 #include "render/renderer.hpp"
-#include "scene/resolve.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -153,13 +153,13 @@ public:
 
 private:
     /// The double reference of a configuration's scene (with its case's reference keys), cached by scene.
-    const measure::Shape& reference(const Configuration& c, scene::Values values);
+    const analysis::Shape& reference(const Configuration& c, scene::Values values);
 
     const Experiment& m_exp;
     std::vector<std::string> m_columns;
     double m_targetMajorDeg = 0;
     std::map<std::string, double> m_matched;             ///< model -> matched width parameter
-    std::map<std::string, measure::Shape> m_references;  ///< reference scene -> its measurement
+    std::map<std::string, analysis::Shape> m_references;  ///< reference scene -> its measurement
     measurement::Session m_session;
 };
 

@@ -2,11 +2,11 @@
 
 #include "experiments/experiment.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/reports.hpp"
 #include "experiments/results.hpp"
-#include "measurement/row.hpp"
+#include "hilite/measurement/row.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -24,7 +24,7 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-void addErrors(nlohmann::json& row, const measure::Shape& ref) {
+void addErrors(nlohmann::json& row, const analysis::Shape& ref) {
     row["ref_aspect"] = ref.aspect;
     row["ref_major_deg"] = ref.major_deg;
     row["ref_minor_deg"] = ref.minor_deg;
@@ -119,7 +119,7 @@ void ExperimentRunner::applyMatch(scene::Values& values, nlohmann::json& row) {
     row["matched_parameter"] = it->second;
 }
 
-const measure::Shape& ExperimentRunner::reference(const Configuration& c, scene::Values values) {
+const analysis::Shape& ExperimentRunner::reference(const Configuration& c, scene::Values values) {
     values.merge(c.reference);
     const scene::Resolved r = scene::resolve(values);
     // The scene and the threshold define the reference; the settings do not, nor the GL rule over a light with size

@@ -1,16 +1,16 @@
-#include "experiments/fit.hpp"
+#include "hilite/experiments/fit.hpp"
 
-#include "brdf/params.hpp"
-#include "core/error.hpp"
-#include "core/math.hpp"
+#include "hilite/brdf/params.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/core/math.hpp"
 #include "core/text.hpp"
 #include "experiments/plot.hpp"
 #include "io/image_io.hpp"
 #include "measurement/diagnose.hpp"
-#include "measurement/measure_scene.hpp"
-#include "measurement/row.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "hilite/measurement/row.hpp"
 #include "render/renderer.hpp"
-#include "scene/registry.hpp"
+#include "hilite/scene/registry.hpp"
 
 #include <nlopt.hpp>
 
@@ -96,9 +96,9 @@ std::vector<scene::Resolved> sweepScenes(scene::Values v, const FitResult& r) {
     return out;
 }
 
-FitSample sampleOf(const measure::Shape& shape, double incidence, double threshold) {
+FitSample sampleOf(const analysis::Shape& shape, double incidence, double threshold) {
     std::vector<std::string> flags;
-    for (measure::Flag f : shape.flags) flags.push_back(measure::toString(f));
+    for (analysis::Flag f : shape.flags) flags.push_back(analysis::toString(f));
     return sampleOf(incidence, threshold, shape.major_deg, shape.minor_deg, shape.aspect, shape.peak, flags);
 }
 
@@ -179,9 +179,9 @@ std::vector<FitSample> measureSweep(measurement::Session& session, const std::ve
                 alone(j);
                 continue;
             }
-            measure::Options opt = scenes[j].setup.options;
+            analysis::Options opt = scenes[j].setup.options;
             opt.level = opt.threshold * peak;
-            measure::Shape shape = measure::measureImage(img.data.data(), img.width, img.height, opt);
+            analysis::Shape shape = analysis::measureImage(img.data.data(), img.width, img.height, opt);
             measurement::diagnose(sc, opt.threshold, measurement::Path::Gl, shape);
             if (!shape.flags.empty() || shape.components != 1 || shape.minor_pixels < kOneFrameMinPixels) alone(j);
             else out[i * nt + j] = sampleOf(shape, r.angles[i], r.thresholds[j]);

@@ -4,7 +4,7 @@
 #include "experiments/reports.hpp"
 
 #include "measurement/micro_fields.hpp"
-#include "measurement/row.hpp"
+#include "hilite/measurement/row.hpp"
 #include "micro/masking.hpp"
 
 #include <cmath>

@@ -1,12 +1,12 @@
 #include "experiments/reports.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "core/text.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/strip.hpp"
 #include "io/image_io.hpp"
 #include "io/label.hpp"
-#include "measurement/row.hpp"
+#include "hilite/measurement/row.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,10 +1,10 @@
 #include "experiments/results.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
 #include "experiments/experiment.hpp"
-#include "scene/registry.hpp"
+#include "hilite/scene/registry.hpp"
 
 #include <algorithm>
 #include <cinttypes>

@@ -1,6 +1,6 @@
-#include "experiments/run.hpp"
+#include "hilite/experiments/run.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/results.hpp"

@@ -1,7 +1,7 @@
 #include "experiments/strip.hpp"
 
-#include "brdf/evaluate.hpp"
-#include "core/image.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/image.hpp"
 #include "io/image_io.hpp"
 #include "io/label.hpp"
 

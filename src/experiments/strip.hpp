@@ -2,7 +2,7 @@
 // The Fresnel colour strip of a material: F(theta) from normal incidence (left) to grazing (right),
 // linear RGB written sRGB-encoded; and the numbers that describe its colour shift.
 
-#include "brdf/params.hpp"
+#include "hilite/brdf/params.hpp"
 
 #include <string>
 

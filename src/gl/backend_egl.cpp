@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl/context.hpp"
 
 namespace hilite::gl {

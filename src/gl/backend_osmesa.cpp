@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl/context.hpp"
 
 namespace hilite::gl {

@@ -1,6 +1,6 @@
 #include "gl/check.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <glad/gl.h>
 

@@ -1,6 +1,6 @@
 #include "gl/context.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
 
 #include <glad/gl.h>

@@ -6,6 +6,8 @@
 // GL entry points are loaded through the backend's GetProcAddress (glad), never linked from libGL.
 // One context is current per process at a time: creating a context loads the GL pointers for it.
 
+#include "hilite/gl/backend.hpp"
+
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -14,14 +16,6 @@
 
 namespace hilite::gl {
 
-enum class Backend { Auto, OSMesa, EGL, EGLDevice };
-const char* toString(Backend);
-std::ostream& operator<<(std::ostream&, Backend);
-std::optional<Backend> parseBackend(const std::string&);  ///< "auto", "osmesa", "egl", "egl-device"
-/// Every backend name, in the order help lists them.
-std::vector<std::string> backendNames();
-/// The backend asked for by the environment variable HILITE_GL_BACKEND, or Auto.
-Backend backendFromEnvironment();
 
 struct ContextInfo {
     Backend backend = Backend::Auto;

@@ -2,7 +2,7 @@
 // The project's own float framebuffer: an RGBA32F colour attachment and a 24-bit depth attachment.
 // Values below 0 and above 1 survive; readback is float, in the attachment's own format (the fast path).
 
-#include "core/image.hpp"
+#include "hilite/core/image.hpp"
 
 namespace hilite::gl {
 

@@ -2,7 +2,7 @@
 // A linked GL program built from pieces of source, each remembering the file and line it came from,
 // so a compile error names "shaders/brdf.glsl:42" rather than "0:317".
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <map>
 #include <string>

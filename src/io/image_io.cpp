@@ -1,6 +1,6 @@
 #include "io/image_io.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION

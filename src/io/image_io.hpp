@@ -3,7 +3,7 @@
 // Every write goes to a temporary file beside the target and is renamed over it only when complete,
 // so a failure never leaves a partial file nor touches an existing one.
 
-#include "core/image.hpp"
+#include "hilite/core/image.hpp"
 
 #include <string>
 

@@ -2,7 +2,7 @@
 // Text in pictures: contact sheets and strips carry their row and column values, so a tile can be read
 // without the caption. Glyphs from stb_easy_font (a public-domain vector font of quads).
 
-#include "core/image.hpp"
+#include "hilite/core/image.hpp"
 
 #include <string>
 

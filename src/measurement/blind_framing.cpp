@@ -1,4 +1,5 @@
 #include "measurement/blind_framing.hpp"
+#include "render/renderer.hpp"
 
 #include "measurement/framing.hpp"
 
@@ -77,14 +78,14 @@ Measurement measureBlind(render::Renderer& renderer, const render::Scene& scene,
     const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
     renderInto(renderer, scene, cam, img, m);
     auto t0 = Clock::now();
-    m.shape = measure::measureImage(img.data.data(), img.width, img.height, setup.options);
+    m.shape = analysis::measureImage(img.data.data(), img.width, img.height, setup.options);
     m.measure_ms += msSince(t0);
     m.halfWidth = std::max(1, (setup.width + 1) / 2);
     m.halfHeight = std::max(1, (setup.height + 1) / 2);
     const PinholeCamera halfCam = measurementCamera(scene, frame.center, frame.fovDeg, m.halfWidth, m.halfHeight);
     renderInto(renderer, scene, halfCam, half, m);
     t0 = Clock::now();
-    m.halfResolution = measure::measureImage(half.data.data(), half.width, half.height, setup.options);
+    m.halfResolution = analysis::measureImage(half.data.data(), half.width, half.height, setup.options);
     m.measure_ms += msSince(t0);
     m.fovDeg = frame.fovDeg;
     m.center = frame.center;

@@ -16,7 +16,7 @@
 // falls at least as fast as 1/N it bounds the error at N (sub-pixel boundaries converge as 1/N^2, where
 // it overestimates about 3x).
 
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 namespace hilite::measurement {
 

@@ -1,8 +1,8 @@
 #include "measurement/diagnose.hpp"
 
-#include "brdf/evaluate.hpp"
-#include "render/area_light.hpp"
-#include "measurement/measure_scene.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/render/area_light.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +27,7 @@ double halfWidthAlong(const TwinSampler& f, double du, double dv, double level) 
     return hi;
 }
 
-void replace(measure::Shape& s, measure::Flag from, measure::Flag to) {
+void replace(analysis::Shape& s, analysis::Flag from, analysis::Flag to) {
     s.flags.erase(std::remove(s.flags.begin(), s.flags.end(), from), s.flags.end());
     if (!s.has(to)) s.flags.push_back(to);
 }
@@ -52,7 +52,7 @@ LobeWidths twinLobeWidths(const render::Scene& scene, double threshold) {
     return w;
 }
 
-bool unboundedAtHorizon(const render::Scene& scene, const measure::Shape& shape) {
+bool unboundedAtHorizon(const render::Scene& scene, const analysis::Shape& shape) {
     if (!(shape.peak > 0)) return false;
     const dvec3 w = scene.light.chart().direction(deg2rad(shape.peak_u_deg), deg2rad(shape.peak_v_deg));
     const double horizontal = std::hypot(w.x, w.y);
@@ -76,9 +76,9 @@ bool lightReaches(const render::Scene& scene) {
     return l.irradiance > 0 && l.direction().z > 0;
 }
 
-void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape,
+void diagnose(const render::Scene& scene, double threshold, Path path, analysis::Shape& shape,
               const LobeWidths* widths) {
-    using measure::Flag;
+    using analysis::Flag;
     if (brdf::isDelta(scene.brdf)) {
         // No pixel and no search can sample a delta: the highlight is the mirror image of the light, of
         // reflectance F at the mirror pair's cos (none for a matched index, F = 0).

@@ -5,8 +5,8 @@
 // resolve is `effectively_mirror` in GL; a lobe that grows without bound towards the horizon (G = 1) is
 // `unbounded_at_horizon`: its measured peak is wherever the sampling stopped.
 
-#include "measure/highlight.hpp"
-#include "render/scene.hpp"
+#include "hilite/analysis/highlight.hpp"
+#include "hilite/render/scene.hpp"
 
 namespace hilite::measurement {
 
@@ -41,7 +41,7 @@ LobeWidths twinLobeWidths(const render::Scene& scene, double threshold);
 /// Whether the twin's lobe grows without bound towards the horizon below the measured peak: the peak lies
 /// within 0.05 (cos theta_o) of the horizon and, on its azimuth, the lobe rises more than 100-fold between
 /// 1e-3 and 1e-6 of the peak's height (as 1 / cos theta_o: 1000-fold; a bounded lobe: about 1-fold).
-bool unboundedAtHorizon(const render::Scene& scene, const measure::Shape& shape);
+bool unboundedAtHorizon(const render::Scene& scene, const analysis::Shape& shape);
 
 /// Whether any light reaches the plane (irradiance > 0 from above the horizon).
 bool lightReaches(const render::Scene& scene);
@@ -52,7 +52,7 @@ enum class Path { Gl, Cpu, Reference };
 /// Adds the diagnoses above to a measurement of `scene` by `path` (replacing no_highlight where the lobe
 /// exists). `threshold`: the measurement's fraction of the peak.
 /// `widths`: twinLobeWidths(scene, threshold) when the caller has it already (it costs ~1000 twin evaluations).
-void diagnose(const render::Scene& scene, double threshold, Path path, measure::Shape& shape,
+void diagnose(const render::Scene& scene, double threshold, Path path, analysis::Shape& shape,
               const LobeWidths* widths = nullptr);
 
 }  // namespace hilite::measurement

@@ -3,9 +3,9 @@
 // blind one for .brdf files (blind_framing.cpp): find where the region {L >= frac * peak} sits in a coarse
 // (L, u, v, w) render, then aim at it and zoom so it fills most of the frame.
 
-#include "core/camera.hpp"
-#include "core/image.hpp"
-#include "core/math.hpp"
+#include "hilite/core/camera.hpp"
+#include "hilite/core/image.hpp"
+#include "hilite/core/math.hpp"
 
 namespace hilite::measurement {
 

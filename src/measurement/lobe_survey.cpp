@@ -1,6 +1,6 @@
 #include "measurement/lobe_survey.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -295,8 +295,8 @@ int LobeSurvey::partAt(const dvec3& we) const {
     return best;
 }
 
-std::vector<measure::ChartBox> LobeSurvey::boxes() const {
-    std::vector<measure::ChartBox> b;
+std::vector<analysis::ChartBox> LobeSurvey::boxes() const {
+    std::vector<analysis::ChartBox> b;
     for (const SurveyPart& p : parts) b.push_back({p.u0, p.u1, p.v0, p.v1, p.seed.x, p.seed.y});
     return b;
 }

@@ -6,8 +6,8 @@
 // Example it exists for: GGX alpha 0.1 + height-correlated Smith + Schlick F0 0.04 at theta_i 60 deg has the
 // main lobe and a strip just above the horizon where the lobe rises back above half its peak.
 
-#include "measure/highlight.hpp"
-#include "render/scene.hpp"
+#include "hilite/analysis/highlight.hpp"
+#include "hilite/render/scene.hpp"
 
 #include <vector>
 
@@ -36,7 +36,7 @@ struct LobeSurvey {
     /// The part whose survey samples lie nearest `we` (within two grid steps), or -1.
     int partAt(const dvec3& we) const;
     /// The parts' boxes in the chart (radians).
-    std::vector<measure::ChartBox> boxes() const;
+    std::vector<analysis::ChartBox> boxes() const;
 
     // The grid: rings of elevation (deg, decreasing) x azimuths (relative to the light's, from the
     // forward direction), each sample's part label (-1: outside the region).

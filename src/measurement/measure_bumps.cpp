@@ -1,4 +1,5 @@
 #include "measurement/measure_bumps.hpp"
+#include "render/renderer.hpp"
 
 #include <chrono>
 
@@ -20,7 +21,7 @@ Measurement measureBumps(render::Renderer& renderer, const render::Scene& scene,
     m.render_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++m.renders;
     t0 = std::chrono::steady_clock::now();
-    m.shape = measure::measureImage(img.data.data(), img.width, img.height, setup.options);
+    m.shape = analysis::measureImage(img.data.data(), img.width, img.height, setup.options);
     m.measure_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return m;
 }

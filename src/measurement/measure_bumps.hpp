@@ -2,7 +2,7 @@
 // The highlight of explicit micro-geometry: framed like the analytic BRDF it should converge to
 // (the same NDF and Fresnel, G = 1), then rendered once with the bump field and measured like any render.
 
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 namespace hilite::measurement {
 

@@ -1,11 +1,12 @@
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "render/renderer.hpp"
 
 #include "measurement/measure_bumps.hpp"
 
-#include "brdf/evaluate.hpp"
-#include "core/error.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/error.hpp"
 #include "measurement/diagnose.hpp"
-#include "measure/supersample.hpp"
+#include "analysis/supersample.hpp"
 #include "render/cpu_view.hpp"
 #include "measurement/peak_frame.hpp"
 #include "measurement/lobe_survey.hpp"
@@ -47,12 +48,12 @@ bool TwinSampler::at(double u, double v, double& L) const {
     return true;
 }
 
-measure::LobeFunction twinLobe(const render::Scene& scene) {
+analysis::LobeFunction twinLobe(const render::Scene& scene) {
     render::requireTwin(scene, "the CPU lobe");
     const auto copy = std::make_shared<const render::Scene>(scene);  // the functions may outlive `scene`
     const auto sampler = std::make_shared<const TwinSampler>(*copy);
     const MirrorChart chart = scene.light.chart();
-    measure::LobeFunction f;
+    analysis::LobeFunction f;
     f.lobe = [copy, sampler](double u, double v) { return sampler->lobe(u, v); };
     f.visible = [chart](double u, double v) { return chart.direction(u, v).z > 0.0; };
     return f;
@@ -163,11 +164,11 @@ PixelRect cropOf(const Aim& aim, const PinholeCamera& fine) {
 
 /// The final render(s) of the frame and their analysis: one render and measureImage, or n x n jittered
 /// renders combined by the Supersampler.
-measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const PixelRect& crop, const MeasureSetup& setup,
+analysis::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const PixelRect& crop, const MeasureSetup& setup,
                        Measurement& m, const PartAim* part = nullptr, double level = 0) {
     thread_local ImageF img;  // reused: the readback never reallocates (4 MB at 512x512)
     const int n = setup.supersample;
-    measure::Options options = setup.options;
+    analysis::Options options = setup.options;
     options.level = level;
     m.shadedPixels = crop.empty() ? long(cam.width) * cam.height : long(crop.width) * crop.height;
     if (n <= 1) {
@@ -177,13 +178,13 @@ measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixel
         ++m.renders;
         t0 = Clock::now();
         if (part) keepPart(img, *part->scene, *part);
-        measure::Shape shape = measure::measureImage(img.data.data(), img.width, img.height, options);
+        analysis::Shape shape = analysis::measureImage(img.data.data(), img.width, img.height, options);
         m.measure_ms += msSince(t0);
         return shape;
     }
     const int w = crop.empty() ? cam.width : crop.width, h = crop.empty() ? cam.height : crop.height;
-    measure::Supersampler ss(w, h, n * n);
-    for (const dvec2 jitter : measure::jitterGrid(n)) {
+    analysis::Supersampler ss(w, h, n * n);
+    for (const dvec2 jitter : analysis::jitterGrid(n)) {
         auto t0 = Clock::now();
         view(cam, jitter, crop, img, {});
         m.render_ms += msSince(t0);
@@ -194,7 +195,7 @@ measure::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixel
         m.measure_ms += msSince(t0);
     }
     const auto t0 = Clock::now();
-    measure::Shape shape = ss.measure(options);
+    analysis::Shape shape = ss.measure(options);
     m.measure_ms += msSince(t0);
     return shape;
 }
@@ -296,8 +297,8 @@ Measurement measureParts(const ViewFn& view, const render::Scene& scene, const M
     Measurement m;
     m.framing = "automatic (" + std::to_string(survey.parts.size()) + " parts, a view each)";
     const MirrorChart chart = scene.light.chart();
-    measure::Shape total;
-    measure::AreaMoments moments;
+    analysis::Shape total;
+    analysis::AreaMoments moments;
     double level = 0;
     for (size_t k = 0; k < survey.parts.size(); ++k) {
         const SurveyPart& p = survey.parts[k];
@@ -307,25 +308,25 @@ Measurement measureParts(const ViewFn& view, const render::Scene& scene, const M
                     std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(half, 1.3)))), kMinFovDeg, kMaxFovDeg)};
         aimFrame(view, scene, setup, frame, m, &part);
         const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
-        const measure::Shape s = analyse(view, cam, PixelRect{}, setup, m, &part, k == 0 ? 0.0 : level);
+        const analysis::Shape s = analyse(view, cam, PixelRect{}, setup, m, &part, k == 0 ? 0.0 : level);
         if (k == 0) {
             level = setup.options.threshold * s.peak;
             total = s;  // the peak, its place and the widths through it
             m.fovDeg = frame.fovDeg;
             m.center = frame.center;
         }
-        measure::PartShape ps;
+        analysis::PartShape ps;
         setEllipse(ps, s.moments);
-        ps.horizon_cut = s.has(measure::Flag::HorizonCut);
+        ps.horizon_cut = s.has(analysis::Flag::HorizonCut);
         ps.holds_peak = k == 0;
-        ps.measured = !s.has(measure::Flag::NoHighlight);
-        if (ps.measured) moments = measure::combine(moments, s.moments);
+        ps.measured = !s.has(analysis::Flag::NoHighlight);
+        if (ps.measured) moments = analysis::combine(moments, s.moments);
         total.parts.push_back(ps);
         if (k > 0) {
             total.region_pixels += s.region_pixels;
             total.minor_pixels = std::min(total.minor_pixels, s.minor_pixels);
-            for (measure::Flag f : s.flags)
-                if (f != measure::Flag::NoHighlight && !total.has(f)) total.flags.push_back(f);
+            for (analysis::Flag f : s.flags)
+                if (f != analysis::Flag::NoHighlight && !total.has(f)) total.flags.push_back(f);
             // A view that found nothing of its part: the survey's part is another's (joined to it below the
             // survey's resolution, so measured in that one's view) or lies below the level: nothing is missing.
             // A part that runs out of its view is `clipped` (the flags above), not lost.
@@ -341,13 +342,13 @@ Measurement measureParts(const ViewFn& view, const render::Scene& scene, const M
 
 /// With a fixed frame the parts outside it are not measured: say so.
 void flagPartsOutside(const render::Scene& scene, const LobeSurvey& survey, const PinholeCamera& cam,
-                      measure::Shape& shape) {
+                      analysis::Shape& shape) {
     const MirrorChart chart = scene.light.chart();
     for (const SurveyPart& p : survey.parts) {
         double nx = 0, ny = 0;
         const dvec3 we = chart.direction(p.seed.x, p.seed.y);
         if (!cam.project(-we, nx, ny) || std::abs(nx) > 1 || std::abs(ny) > 1) {
-            if (!shape.has(measure::Flag::PartsNotMeasured)) shape.flags.push_back(measure::Flag::PartsNotMeasured);
+            if (!shape.has(analysis::Flag::PartsNotMeasured)) shape.flags.push_back(analysis::Flag::PartsNotMeasured);
             return;
         }
     }
@@ -363,9 +364,9 @@ std::optional<LobeSurvey> surveyFor(const render::Scene& scene, double threshold
 }
 
 /// A lobe the survey found unbounded toward the horizon has no peak, however ordinary its pixels look.
-void flagUnbounded(const std::optional<LobeSurvey>& survey, measure::Shape& shape) {
-    if (survey && survey->unbounded && !shape.has(measure::Flag::UnboundedAtHorizon))
-        shape.flags.push_back(measure::Flag::UnboundedAtHorizon);
+void flagUnbounded(const std::optional<LobeSurvey>& survey, analysis::Shape& shape) {
+    if (survey && survey->unbounded && !shape.has(analysis::Flag::UnboundedAtHorizon))
+        shape.flags.push_back(analysis::Flag::UnboundedAtHorizon);
 }
 
 Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scene, const MeasureSetup& setup) {
@@ -396,11 +397,11 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     const PixelRect crop = setup.crop && aim.good && aimResolves(widths, setup, frame) ? cropOf(aim, cam) : PixelRect{};
     m.shape = analyse(view, cam, crop, setup, m);
     // The region reached the crop's edge: the crop was too tight, not the frame. Measure the whole frame.
-    if (!crop.empty() && m.shape.has(measure::Flag::Clipped)) m.shape = analyse(view, cam, PixelRect{}, setup, m);
+    if (!crop.empty() && m.shape.has(analysis::Flag::Clipped)) m.shape = analyse(view, cam, PixelRect{}, setup, m);
     diagnose(scene, setup.options.threshold, path, m.shape, &widths);  // mirror, sub-pixel lobes, float limits
     if (survey && !survey->unbounded && survey->parts.size() > 1) flagPartsOutside(scene, *survey, cam, m.shape);
     flagUnbounded(survey, m.shape);
-    if (m.shape.has(measure::Flag::NoHighlight)) m.shape.components = 0;
+    if (m.shape.has(analysis::Flag::NoHighlight)) m.shape.components = 0;
     m.fovDeg = frame.fovDeg;
     m.center = frame.center;
     return m;
@@ -439,14 +440,14 @@ Measurement measure(render::Renderer* renderer, const render::Scene& scene, cons
     return measureAny(*renderer, scene, setup);  // bump fields go through measureBumps
 }
 
-Measurement measureReference(const render::Scene& scene, const measure::Options& options) {
+Measurement measureReference(const render::Scene& scene, const analysis::Options& options) {
     render::requireTwin(scene, "--reference");
     if (const auto framed = frameAboutPeak(scene, options.threshold)) return measureReference(*framed, options);
     Measurement m;
     m.framing = "reference";
     const auto t0 = Clock::now();
     const LobeSurvey survey = surveyLobe(scene, options.threshold);
-    const measure::LobeFunction f = twinLobe(scene);
+    const analysis::LobeFunction f = twinLobe(scene);
     const double radius = std::min(4.0 * twinHalfWidth(scene, options.threshold), kPi / 2);
     if (survey.peak > 0 && !survey.unbounded) {
         // Fast path (~5 ms): the polar contour about the peak, where the region is one part, proven star-shaped
@@ -454,16 +455,16 @@ Measurement measureReference(const render::Scene& scene, const measure::Options&
         // Else the scan lines (~0.1-1 s), which assume nothing.
         bool polar = survey.parts.size() == 1 && !survey.parts[0].horizon && !survey.peakOnHorizon;
         if (polar) {
-            m.shape = measure::measureReference(f, options, radius, survey.peakUV.x, survey.peakUV.y);
-            polar = m.shape.peak >= survey.peak * (1.0 - 1e-9) && !m.shape.has(measure::Flag::NotStarShaped) &&
-                    !m.shape.has(measure::Flag::HorizonCut);
+            m.shape = analysis::measureReference(f, options, radius, survey.peakUV.x, survey.peakUV.y);
+            polar = m.shape.peak >= survey.peak * (1.0 - 1e-9) && !m.shape.has(analysis::Flag::NotStarShaped) &&
+                    !m.shape.has(analysis::Flag::HorizonCut);
         }
         if (!polar)
-            m.shape = measure::measureLines(f, options, survey.peak, survey.peakUV.x, survey.peakUV.y, survey.boxes());
+            m.shape = analysis::measureLines(f, options, survey.peak, survey.peakUV.x, survey.peakUV.y, survey.boxes());
     } else {  // no lobe, or one without a peak (G = 1 at the horizon): about the mirror direction, flagged
-        m.shape = measure::measureReference(f, options, radius);
-        if (survey.unbounded && !m.shape.has(measure::Flag::UnboundedAtHorizon))
-            m.shape.flags.push_back(measure::Flag::UnboundedAtHorizon);
+        m.shape = analysis::measureReference(f, options, radius);
+        if (survey.unbounded && !m.shape.has(analysis::Flag::UnboundedAtHorizon))
+            m.shape.flags.push_back(analysis::Flag::UnboundedAtHorizon);
     }
     diagnose(scene, options.threshold, Path::Reference, m.shape);
     m.measure_ms = msSince(t0);

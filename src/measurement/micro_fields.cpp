@@ -1,7 +1,7 @@
 #include "measurement/micro_fields.hpp"
 
 #include "measurement/measure_bumps.hpp"
-#include "measurement/row.hpp"
+#include "hilite/measurement/row.hpp"
 #include "measurement/prefilter_check.hpp"
 #include "render/bump_moments.hpp"
 #include "micro/masking.hpp"
@@ -36,7 +36,7 @@ void addMicroFields(nlohmann::json& row, const render::Scene& s, const Measureme
     row["log2_bump_period_px"] = std::log2(period);
     // The patches per axis the centre pixel's footprint needs (uncapped: beyond 64 the moments prefilter runs).
     row["bump_samples_center"] = render::centreBumpSamples(s, cam);
-    measure::Options opt;
+    analysis::Options opt;
     opt.threshold = threshold;
     const Measurement a = measureReference(analyticScene(s), opt);
     row["analytic_aspect"] = a.shape.aspect;
@@ -61,7 +61,7 @@ void addPrefilterFields(nlohmann::json& row, render::Renderer& renderer, const r
     const double a = num(row, "analytic_aspect"), amaj = num(row, "analytic_major_deg"),
                  amin = num(row, "analytic_minor_deg");
     auto put = [&](const std::string& key, double v) { row[key] = std::isfinite(v) ? nlohmann::json(v) : nullptr; };
-    for (const auto& [prefix, shape] : {std::pair<std::string, const measure::Shape*>{"prefilter", &c.moments},
+    for (const auto& [prefix, shape] : {std::pair<std::string, const analysis::Shape*>{"prefilter", &c.moments},
                                         {"next_seed", &c.nextSeed}}) {
         put(prefix + "_aspect", shape->aspect);
         put(prefix + "_aspect_minus_analytic", shape->aspect - a);

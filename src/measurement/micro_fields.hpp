@@ -1,9 +1,9 @@
 #pragma once
 // The row fields of a bump-field measurement (explicit micro-geometry).
 
-#include "measurement/measure_scene.hpp"
-#include "micro/bump_field.hpp"
-#include "render/scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "hilite/micro/bump_field.hpp"
+#include "hilite/render/scene.hpp"
 
 #include <nlohmann/json.hpp>
 

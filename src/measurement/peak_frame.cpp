@@ -1,6 +1,6 @@
 #include "measurement/peak_frame.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "measurement/lobe_survey.hpp"
 
 #include <cmath>

@@ -8,7 +8,7 @@
 // the shape is then that of the region about the peak, undistorted by the azimuthal-equidistant chart's
 // stretch far from its centre (rho / sin rho: 1.2 at 60 deg), and its centroid is relative to the peak.
 
-#include "render/scene.hpp"
+#include "hilite/render/scene.hpp"
 
 #include <optional>
 #include <string>

@@ -1,4 +1,5 @@
 #include "measurement/prefilter_check.hpp"
+#include "render/renderer.hpp"
 
 #include "render/bump_moments.hpp"
 
@@ -37,9 +38,9 @@ PrefilterCheck checkPrefilter(render::Renderer& renderer, const render::Scene& s
     renderer.render(ss, cam, render::Output::Measure, a);
     renderer.render(mom, cam, render::Output::Measure, b);
     renderer.render(next, cam, render::Output::Measure, n);
-    c.supersampled = measure::measureImage(a.data.data(), a.width, a.height, setup.options);
-    c.moments = measure::measureImage(b.data.data(), b.width, b.height, setup.options);
-    c.nextSeed = measure::measureImage(n.data.data(), n.width, n.height, setup.options);
+    c.supersampled = analysis::measureImage(a.data.data(), a.width, a.height, setup.options);
+    c.moments = analysis::measureImage(b.data.data(), b.width, b.height, setup.options);
+    c.nextSeed = analysis::measureImage(n.data.data(), n.width, n.height, setup.options);
     const int bx = cam.width / PrefilterCheck::kBlock, by = cam.height / PrefilterCheck::kBlock;
     const auto A = blockMeans(a, bx, by), B = blockMeans(b, bx, by), N = blockMeans(n, bx, by);
     const double top = B.empty() ? 0.0 : *std::max_element(B.begin(), B.end());

@@ -12,12 +12,12 @@
 // and the prefilter's own error sqrt(block_error^2 - block_noise^2) (0 when the noise explains it all): the
 // part of the difference that a second realisation of the supersampled surface does not show.
 
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 namespace hilite::measurement {
 
 struct PrefilterCheck {
-    measure::Shape supersampled, moments, nextSeed;  ///< the three renders' highlights
+    analysis::Shape supersampled, moments, nextSeed;  ///< the three renders' highlights
     double blockError = 0, blockNoise = 0, prefilterError = 0;
     int blocks = 0;                                  ///< blocks compared
     int unresolvedBlocks = 0;                        ///< highlight blocks left out: supersampling capped there

@@ -1,11 +1,11 @@
-#include "measurement/row.hpp"
+#include "hilite/measurement/row.hpp"
 
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "measurement/micro_fields.hpp"
 #include "measurement/peak_frame.hpp"
 #include "measurement/tolerance.hpp"
-#include "render/area_light.hpp"
+#include "hilite/render/area_light.hpp"
 
 #include <cmath>
 #include <tuple>
@@ -18,7 +18,7 @@ using nlohmann::json;
 
 json finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-void shapeFields(json& j, const measure::Shape& r) {
+void shapeFields(json& j, const analysis::Shape& r) {
     for (auto [key, v] : {std::pair{"aspect", r.aspect}, {"eccentricity", r.eccentricity}, {"major_deg", r.major_deg},
                           {"minor_deg", r.minor_deg}, {"orientation_deg", r.orientation_deg},
                           {"centroid_u_deg", r.centroid_u_deg}, {"centroid_v_deg", r.centroid_v_deg},
@@ -26,13 +26,13 @@ void shapeFields(json& j, const measure::Shape& r) {
                           {"peak_u_deg", r.peak_u_deg}, {"peak_v_deg", r.peak_v_deg}, {"area_deg2", r.area_deg2}})
         j[key] = finite(v);
     json flags = json::array();
-    for (auto fl : r.flags) flags.push_back(measure::toString(fl));
+    for (auto fl : r.flags) flags.push_back(analysis::toString(fl));
     j["flags"] = flags;
     j["minor_pixels"] = finite(r.minor_pixels);
     j["components"] = r.components;
     if (!r.parts.empty()) {  // each part's own ellipse, the part holding the peak first
         json parts = json::array();
-        for (const measure::PartShape& p : r.parts)
+        for (const analysis::PartShape& p : r.parts)
             parts.push_back({{"aspect", finite(p.aspect)}, {"eccentricity", finite(p.eccentricity)},
                              {"major_deg", finite(p.major_deg)}, {"minor_deg", finite(p.minor_deg)},
                              {"orientation_deg", finite(p.orientation_deg)}, {"centroid_u_deg", finite(p.centroid_u_deg)},
@@ -44,7 +44,7 @@ void shapeFields(json& j, const measure::Shape& r) {
 
 /// Without a CPU twin (a .brdf file) the error is estimated by measuring the same frame at half the size.
 void errorEstimate(json& j, const Measurement& m, int width, int height) {
-    const measure::Shape &r = m.shape, &h = *m.halfResolution;
+    const analysis::Shape &r = m.shape, &h = *m.halfResolution;
     json e;
     for (auto [key, a, b] : {std::tuple{"aspect", r.aspect, h.aspect}, {"eccentricity", r.eccentricity, h.eccentricity},
                              {"major_deg", r.major_deg, h.major_deg}, {"minor_deg", r.minor_deg, h.minor_deg},
@@ -64,14 +64,14 @@ void errorEstimate(json& j, const Measurement& m, int width, int height) {
 /// both parities, since a contour's error depends on where it crosses the bins (one halving of all three axes
 /// at once gave 0.8x the true error of GGX 0.1 at 20 deg, one parity per axis 0.45x of its minor axis at 10).
 void tableError(json& j, render::Renderer* renderer, const scene::Resolved& r, const MeasureSetup& setup,
-                const measure::Shape& full) {
+                const analysis::Shape& full) {
     double e[4] = {0, 0, 0, 0};
     for (int axis = 0; axis < 3; ++axis) {
         double worst[4] = {0, 0, 0, 0};
         for (int parity = 0; parity < 2; ++parity) {
             render::Scene s = r.scene;
             s.brdf.measured = brdf::merl::halfResolution(r.scene.brdf.measured, axis, parity);
-            const measure::Shape h =
+            const analysis::Shape h =
                 r.reference ? measureReference(s, setup.options).shape : measure(renderer, s, setup).shape;
             const double d[4] = {full.aspect - h.aspect, full.eccentricity - h.eccentricity,
                                  full.major_deg - h.major_deg, full.minor_deg - h.minor_deg};

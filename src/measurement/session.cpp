@@ -1,4 +1,5 @@
-#include "measurement/session.hpp"
+#include "hilite/measurement/session.hpp"
+#include "render/renderer.hpp"
 
 #include "measurement/shader_probe.hpp"
 

@@ -1,7 +1,10 @@
 #include "measurement/shader_probe.hpp"
+#include "render/renderer.hpp"
 
-#include "core/error.hpp"
-#include "measurement/measure_scene.hpp"
+#include "core/install_paths.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/scene/resolve.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -9,7 +12,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
 #include <cerrno>
 #include <cstring>
 #include <chrono>
@@ -17,6 +24,10 @@
 #include <memory>
 #include <thread>
 #include <vector>
+
+#ifndef HILITE_INSTALL_LIBEXEC_DIR
+#define HILITE_INSTALL_LIBEXEC_DIR "/usr/local/libexec"
+#endif
 
 namespace hilite::measurement {
 
@@ -30,30 +41,37 @@ std::string number(double v) {
     return buf;
 }
 
-/// The hilite executable that runs the probe: this one, or (in a program linked against the library) the
-/// installed one.
+/// The helper that runs the probe (hilite-probe), when set by setProbeExecutable.
 std::string& probeOverride() {
     static std::string path;
     return path;
 }
 
+/// hilite-probe, found relative to the code that runs (core/install_paths.hpp): beside it (<build>/bin), in
+/// <prefix>/libexec (beside <prefix>/lib or <prefix>/bin) or in the Python package's libexec/, else in the
+/// install prefix compiled in. SystemError naming every place tried if none holds it.
 std::string probeExecutable() {
     if (!probeOverride().empty()) return probeOverride();
-    char buf[4096];
-    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-    if (n <= 0) throw SystemError("shader probe: cannot find this executable (/proc/self/exe)");
-    const std::string self(buf, size_t(n));
-    if (self.substr(self.rfind('/') + 1) == "hilite") return self;
-#ifdef HILITE_INSTALL_BIN_DIR
-    return std::string(HILITE_INSTALL_BIN_DIR) + "/hilite";
-#else
-    return self;
-#endif
+    std::vector<std::string> tried;
+    for (const std::string& dir : {objectDirectory(), executableDirectory()}) {
+        if (dir.empty()) continue;
+        for (const std::string& candidate : {dir + "/hilite-probe", dir + "/../libexec/hilite-probe",
+                                             dir + "/libexec/hilite-probe"}) {
+            if (access(candidate.c_str(), X_OK) == 0) return candidate;
+            if (std::find(tried.begin(), tried.end(), candidate) == tried.end()) tried.push_back(candidate);
+        }
+    }
+    const std::string installed = std::string(HILITE_INSTALL_LIBEXEC_DIR) + "/hilite-probe";
+    if (access(installed.c_str(), X_OK) == 0) return installed;
+    tried.push_back(installed + " (the install prefix compiled in)");
+    std::string list;
+    for (const auto& t : tried) list += (list.empty() ? "" : ", ") + t;
+    throw SystemError("shader probe: the helper hilite-probe not found (looked in " + list + ")");
 }
 
 /// The child's command line: the scene's .brdf, its values and light, nothing else.
 std::vector<std::string> probeArgs(const std::string& exe, const render::Scene& s, const std::string& backend, int gpu) {
-    std::vector<std::string> a = {exe, "probe-shader", "--brdf", s.brdfFile->path};
+    std::vector<std::string> a = {exe, "--brdf", s.brdfFile->path};
     for (const std::string& v : brdf_file::valueAssignments(*s.brdfFile)) a.insert(a.end(), {"--param", v});
     a.insert(a.end(), {"--incidence", number(s.light.incidenceDeg), "--azimuth", number(s.light.azimuthDeg),
                        "--tangent-angle", number(s.brdf.tangentAngleDeg), "--light", render::toString(s.light.type),
@@ -199,6 +217,38 @@ void runShaderProbe(render::Scene scene, gl::Backend backend, int gpu) {
         for (double fov : {160.0, 2.0})
             for (auto out : {render::Output::Measure, render::Output::Color})
                 renderer.render(scene, measurementCamera(scene, wr, fov, kProbeSize, kProbeSize), out, img);
+    }
+}
+
+/// hilite-probe's main: `--name value` pairs (the registry's names, '-' for '_', as probeArgs writes them),
+/// resolved as a render; exit 0, or the one-line error as "hilite: ..." with exit 2 (input) or 3 (system).
+int probeMain(int argc, char** argv) {
+    try {
+        scene::Values values;
+        for (int i = 1; i < argc; i += 2) {
+            std::string flag = argv[i];
+            if (flag.rfind("--", 0) != 0 || i + 1 >= argc)
+                throw InputError("hilite-probe: expected --name value pairs, got '" + flag + "'");
+            flag = flag.substr(2);
+            std::replace(flag.begin(), flag.end(), '-', '_');
+            values.set(flag, argv[i + 1]);
+        }
+        const scene::Resolved r = scene::resolve(values, scene::Purpose::Render);
+        // Test hook: a GL driver crash cannot be provoked on purpose, so tests/cli/test_hostile.cpp makes
+        // this child die of the named signal after a line on stderr, as a Mesa compiler abort does.
+        if (const char* sig = std::getenv("HILITE_TEST_PROBE_SIGNAL"); sig && std::atoi(sig) > 0) {
+            std::fprintf(stderr, "test: simulated shader compiler crash\n");
+            std::signal(std::atoi(sig), SIG_DFL);
+            std::raise(std::atoi(sig));
+        }
+        runShaderProbe(r.scene, scene::backendOf(r), r.gpu);
+        return 0;
+    } catch (const InputError& e) {
+        std::cerr << "hilite: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "hilite: " << e.what() << "\n";
+        return 3;
     }
 }
 

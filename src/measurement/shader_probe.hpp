@@ -2,12 +2,12 @@
 // The probe a .brdf shader must pass before hilite renders with it. llvmpipe has no GPU timeout, and a
 // draw stuck in a user's loop cannot be interrupted from inside the process, so the shader is first
 // compiled and run on tiny renders (8x8, both outputs, a wide and a narrow view at a few incidences) in a
-// child process: this executable again (fork + exec, hidden subcommand `probe-shader`), in a fresh process
-// because llvmpipe's threads do not survive a fork. The parent waits at most the time limit, then kills it.
+// child process: the small helper hilite-probe (fork + exec; <prefix>/libexec, found relative to the library),
+// in a fresh process because llvmpipe's threads do not survive a fork. The parent waits at most the time limit, then kills it.
 // Shaders slow only in directions the probe did not visit are caught later by render::Watchdog.
 
 #include "gl/context.hpp"
-#include "render/scene.hpp"
+#include "hilite/render/scene.hpp"
 
 #include <string>
 
@@ -24,12 +24,15 @@ void probeShader(const render::Scene& scene, const std::string& backend, double 
 /// `status` is a wait status (waitpid).
 std::string probeFailure(const std::string& path, int status, const std::string& err);
 
-/// The hilite executable that runs the probe from a process that is not hilite (the Python module: python3
-/// is /proc/self/exe there). "" restores the default: this executable when it is hilite, else the installed one.
+/// The hilite-probe helper to run, where it is not found relative to the library (the Python module in the
+/// build tree). "" restores the default search.
 void setProbeExecutable(const std::string& path);
 
-/// What the child does (the hidden subcommand `hilite probe-shader`): compiles both outputs and renders the
-/// probe views; a failure is the usual one-line InputError.
+/// What the child does: compiles both outputs and renders the probe views; a failure is the usual one-line
+/// InputError.
 void runShaderProbe(render::Scene scene, gl::Backend backend, int gpu = -1);
+
+/// hilite-probe's main (src/probe_main.cpp): the arguments probeShader passes; exit 0, 2 or 3.
+int probeMain(int argc, char** argv);
 
 }  // namespace hilite::measurement

@@ -17,8 +17,8 @@
 
 #include "measurement/tolerance.hpp"
 
-#include "core/error.hpp"
-#include "render/area_light.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/render/area_light.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -96,7 +96,7 @@ ToleranceResult measureToTolerance(render::Renderer* renderer, const render::Sce
         r.predictedError = c / std::pow(minorPixels(t.base, kLadder[i], e), order);
         r.measurement = measure(renderer, scene, r.setup);
         // The measurement knows better than the twin whether the horizon cuts the region.
-        if (order == 2 && r.measurement.shape.has(measure::Flag::HorizonCut)) {
+        if (order == 2 && r.measurement.shape.has(analysis::Flag::HorizonCut)) {
             e.horizon = true, order = 1, c = kFirstOrder;
             const int j = chooseSize(t.base, e, t.tolerance / kSafety, i, c, order);
             if (j > i) {

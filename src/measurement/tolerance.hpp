@@ -2,7 +2,7 @@
 // `hilite measure --tolerance E`: the cheapest settings predicted to reach an aspect error E
 // for one scene, checked against a finer setting.
 
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 namespace hilite::measurement {
 

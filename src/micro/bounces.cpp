@@ -1,4 +1,4 @@
-#include "micro/bounces.hpp"
+#include "hilite/micro/bounces.hpp"
 
 #include "micro/masking.hpp"
 

@@ -1,4 +1,4 @@
-#include "micro/bump_field.hpp"
+#include "hilite/micro/bump_field.hpp"
 
 #include "micro/fft.hpp"
 

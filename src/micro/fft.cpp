@@ -1,6 +1,6 @@
 #include "micro/fft.hpp"
 
-#include "core/math.hpp"
+#include "hilite/core/math.hpp"
 
 #include <utility>
 

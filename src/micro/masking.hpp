@@ -14,7 +14,7 @@
 //     its normal: G1(wo, m) = G1(wo) and, height-correlated, G2(wi, wo, m) = 1 / (1 + Lambda(wi) + Lambda(wo)).
 //     These are what the traced values test.
 
-#include "micro/bump_field.hpp"
+#include "hilite/micro/bump_field.hpp"
 
 #include <cstdint>
 #include <vector>

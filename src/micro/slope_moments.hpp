@@ -11,8 +11,8 @@
 // so that level 0 cell (i, j) spans [(i + 0.5)/n, (i + 1.5)/n] x [(j + 0.5)/n, (j + 1.5)/n] (tile lengths); level L
 // averages 2^L x 2^L cells, and the last level is the whole tile's slope mean and covariance.
 
-#include "core/math.hpp"
-#include "micro/bump_field.hpp"
+#include "hilite/core/math.hpp"
+#include "hilite/micro/bump_field.hpp"
 
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "render/area_light.hpp"
+#include "hilite/render/area_light.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "core/quadrature.hpp"
 

@@ -12,7 +12,7 @@
 // into hilite's code. BRDF Explorer compiles these shaders as GLSL 4.10 (its templates say #version 410),
 // and so does hilite: shade.frag is 4.10-clean, and the vertex stage (4.50) links with it.
 
-#include "brdf_file/brdf_file.hpp"
+#include "hilite/brdf_file/brdf_file.hpp"
 #include "render/shader_source.hpp"
 
 #include <string>

@@ -3,9 +3,9 @@
 // shaders/micro.glsl (LEAN mapping, Olano & Baker 2010), the mirror-facet Jacobian it shares with the
 // supersampled patches, and the choice between the two (BumpFilter).
 
-#include "core/camera.hpp"
+#include "hilite/core/camera.hpp"
 #include "micro/slope_moments.hpp"
-#include "render/scene.hpp"
+#include "hilite/render/scene.hpp"
 
 namespace hilite::render {
 

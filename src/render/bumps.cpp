@@ -1,8 +1,8 @@
 #include "render/bumps.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "render/bump_moments.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "render/shader_source.hpp"
 
 #include <glad/gl.h>

@@ -2,10 +2,10 @@
 // The explicit micro-geometry render: GL resources and uniforms of the bump field, and the CPU
 // double twin of the shader's bumpRadiance(). See shaders/micro.glsl (BumpGlint) for the physics.
 
-#include "core/camera.hpp"
+#include "hilite/core/camera.hpp"
 #include "gl/program.hpp"
-#include "micro/bump_field.hpp"
-#include "render/scene.hpp"
+#include "hilite/micro/bump_field.hpp"
+#include "hilite/render/scene.hpp"
 
 #include <map>
 #include <memory>

@@ -1,7 +1,7 @@
 #include "render/cpu_view.hpp"
 
-#include "brdf/evaluate.hpp"
-#include "render/area_light.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/render/area_light.hpp"
 
 #include <algorithm>
 #include <stdexcept>

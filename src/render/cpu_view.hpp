@@ -3,11 +3,11 @@
 // direction of its camera ray, render::surfaceRadiance (brdf::evaluate in double; a sphere or disk light by the
 // GL's rule, render::areaRadianceRule) and the chart
 // coordinates, exactly the channels shaders/shade.frag writes for Output::Measure. The GL path's
-// float shader against this path is one of the accuracy knobs; both feed measure::measureImage.
+// float shader against this path is one of the accuracy knobs; both feed analysis::measureImage.
 
-#include "core/camera.hpp"
-#include "core/image.hpp"
-#include "render/scene.hpp"
+#include "hilite/core/camera.hpp"
+#include "hilite/core/image.hpp"
+#include "hilite/render/scene.hpp"
 
 namespace hilite::render {
 

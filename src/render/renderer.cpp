@@ -1,12 +1,12 @@
 #include "render/renderer.hpp"
 
 #include "brdf/energy.hpp"
-#include "render/area_light.hpp"
-#include "brdf/evaluate.hpp"
+#include "hilite/render/area_light.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "render/bumps.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
 #include "render/brdf_file_source.hpp"
 

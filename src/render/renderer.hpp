@@ -2,12 +2,12 @@
 // Renders the plane through a pinhole camera into the float framebuffer and reads it back.
 // Programs are compiled once per effect set and reused; the framebuffer is reused while its size holds.
 
-#include "core/camera.hpp"
-#include "core/image.hpp"
+#include "hilite/core/camera.hpp"
+#include "hilite/core/image.hpp"
 #include "gl/context.hpp"
 #include "gl/framebuffer.hpp"
 #include "gl/program.hpp"
-#include "render/scene.hpp"
+#include "hilite/render/scene.hpp"
 #include "render/shader_source.hpp"
 #include "render/watchdog.hpp"
 

@@ -2,11 +2,12 @@
 
 #include "brdf/dispatch.hpp"
 #include "brdf/energy.hpp"
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
-#include "core/error.hpp"
+#include "core/install_paths.hpp"
+#include "hilite/core/error.hpp"
 
 #include <unistd.h>
 
@@ -18,24 +19,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#ifndef HILITE_INSTALL_SHADER_DIR
-#define HILITE_INSTALL_SHADER_DIR "/usr/local/share/hilite/shaders"
-#endif
-#ifndef HILITE_INSTALL_DATA_DIR
-#define HILITE_INSTALL_DATA_DIR "/usr/local/share/hilite/data"
-#endif
-
 namespace hilite::render {
 
 namespace {
-
-std::string executableDirectory() {
-    char buf[4096];
-    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-    if (n <= 0) return "";
-    std::string path(buf, size_t(n));
-    return path.substr(0, path.rfind('/'));
-}
 
 std::string readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -45,31 +31,27 @@ std::string readFile(const std::string& path) {
     return ss.str();
 }
 
-/// The first of $env, $HILITE_SHARE_DIR/<sub>, <exe>/../share/hilite/<sub> and installDir that holds
-/// `probe`; never the current directory. Throws SystemError listing the places tried. installDir (the
-/// install prefix compiled in) is what a program linked against the installed library finds: its
-/// executable is anywhere, not in <prefix>/bin.
-std::string findDirectory(const char* env, const std::string& sub, const std::string& installDir,
-                          const std::string& probe, const std::string& what) {
+/// The first of $env and <place>/<sub> for the share places (core/install_paths.hpp: $HILITE_SHARE_DIR, beside
+/// the library or program, the install prefix compiled in) that holds `probe`; never the current directory.
+/// Throws SystemError naming HILITE_SHARE_DIR and every place tried.
+std::string findDirectory(const char* env, const std::string& sub, const std::string& probe, const std::string& what) {
     auto holds = [&](const std::string& dir) { return std::ifstream(dir + "/" + probe).good(); };
     std::vector<std::string> tried;
     if (const char* e = std::getenv(env); e && *e) {
         if (holds(e)) return e;
         tried.push_back(std::string(e) + " ($" + env + ")");
     }
-    if (const char* e = std::getenv("HILITE_SHARE_DIR"); e && *e) {
-        const std::string dir = std::string(e) + "/" + sub;
+    for (const SharePlace& place : sharePlaces()) {
+        const std::string dir = place.dir + "/" + sub;
         if (holds(dir)) return dir;
-        tried.push_back(dir + " ($HILITE_SHARE_DIR)");
-    }
-    const std::string exe = executableDirectory();
-    for (const std::string& dir : {exe + "/../share/hilite/" + sub, installDir}) {
-        if (holds(dir)) return dir;
-        tried.push_back(dir);
+        tried.push_back(dir + " (" + place.why + ")");
     }
     std::string list;
     for (const auto& t : tried) list += (list.empty() ? "" : ", ") + t;
-    throw SystemError(what + " not found (looked in " + list + ")");
+    const char* share = std::getenv("HILITE_SHARE_DIR");
+    throw SystemError(what + " not found (looked in " + list + "); set HILITE_SHARE_DIR to the folder holding " +
+                      "shaders/ and data/ (<prefix>/share/hilite)" +
+                      (share && *share ? "" : ", which is unset"));
 }
 
 }  // namespace
@@ -77,13 +59,13 @@ std::string findDirectory(const char* env, const std::string& sub, const std::st
 std::string readShaderFile(const std::string& path) { return readFile(path); }
 
 std::string shaderDirectory() {
-    return findDirectory("HILITE_SHADER_DIR", "shaders", HILITE_INSTALL_SHADER_DIR, "brdf.glsl", "shader files");
+    return findDirectory("HILITE_SHADER_DIR", "shaders", "brdf.glsl", "shader files");
 }
 
 std::string dataDirectory() {
     // Asked for only when a scene names measured spectra: a missing file is that scene's error (exit 2).
     try {
-        return findDirectory("HILITE_DATA_DIR", "data", HILITE_INSTALL_DATA_DIR, "colorimetry/cie1931_2deg_cmf.csv",
+        return findDirectory("HILITE_DATA_DIR", "data", "colorimetry/cie1931_2deg_cmf.csv",
                              "data file colorimetry/cie1931_2deg_cmf.csv");
     } catch (const SystemError& e) {
         throw InputError(e.what());

@@ -3,7 +3,7 @@
 // blocks the scene names are copied in, and the dispatch that calls them is generated here, so the
 // program text contains exactly the terms it runs.
 
-#include "brdf/params.hpp"
+#include "hilite/brdf/params.hpp"
 #include "gl/program.hpp"
 
 #include <map>

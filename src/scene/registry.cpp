@@ -1,14 +1,14 @@
-#include "scene/registry.hpp"
+#include "hilite/scene/registry.hpp"
 
 #include "brdf/materials.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
-#include "brdf/params.hpp"
+#include "hilite/brdf/params.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
-#include "render/area_light.hpp"
-#include "render/surface.hpp"
-#include "scene/resolve.hpp"
+#include "hilite/render/area_light.hpp"
+#include "hilite/render/surface.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,13 @@
-#include "scene/resolve.hpp"
+#include "hilite/scene/resolve.hpp"
+
+#include "gl/context.hpp"
 
 #include "brdf/energy.hpp"
 #include "brdf/materials.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "render/bumps.hpp"
 #include "render/shader_source.hpp"

@@ -1,6 +1,6 @@
-#include "scene/scene_file.hpp"
+#include "hilite/scene/scene_file.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
 

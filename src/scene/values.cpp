@@ -1,6 +1,6 @@
-#include "scene/resolve.hpp"
+#include "hilite/scene/resolve.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <ostream>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Every model and term combination of the BRDF, for the tests that sweep them all.
 
-#include "brdf/params.hpp"
+#include "hilite/brdf/params.hpp"
 #include "brdf/spectral.hpp"
 
 #include <vector>

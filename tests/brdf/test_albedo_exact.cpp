@@ -4,7 +4,7 @@
 // integrand f cos(theta_o) sin(theta_o) evaluated through brdf::evaluate. Nothing here is shared with
 // src/brdf/integrate.cpp (its Gauss-Legendre panels in the half-vector domain).
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/ndf_tables.hpp"

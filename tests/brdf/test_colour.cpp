@@ -1,8 +1,8 @@
 // The colour of a reflectance: the channels of a Fresnel term, their XYZ weights and CIELAB.
 
-#include "brdf/colour.hpp"
+#include "hilite/brdf/colour.hpp"
 #include "brdf/spectral.hpp"
-#include "brdf/terms.hpp"
+#include "hilite/brdf/terms.hpp"
 
 #include <doctest/doctest.h>
 

@@ -2,8 +2,8 @@
 // Rp = 0 at Brewster's angle), total internal reflection, F -> 1 at grazing for every material, the
 // conductor form against pbrt-v4's complex arithmetic, and Schlick's error against the exact curve.
 
-#include "brdf/evaluate.hpp"
-#include "brdf/terms.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/brdf/terms.hpp"
 #include "brdf/materials.hpp"
 #include "brdf/spectral.hpp"
 

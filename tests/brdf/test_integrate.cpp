@@ -3,7 +3,7 @@
 // energy-conserving are reported (MESSAGE), not asserted. The library's integrator is checked against
 // an independent brute-force sum first.
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
 

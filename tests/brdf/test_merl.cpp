@@ -3,10 +3,10 @@
 // brdf::evaluate, the interpolation error off the bin centres, reciprocity, and every bad file refused in one
 // line. One GGX table is shared by the cases (tabulating it is the slow part).
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/merl.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
 

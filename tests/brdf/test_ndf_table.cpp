@@ -1,11 +1,11 @@
 // The hand-painted (tabulated) NDF: reading, normalization, interpolation, Smith's Lambda from the table,
 // and one-line errors naming file:line for bad tables.
 
-#include "brdf/evaluate.hpp"
-#include "brdf/terms.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/brdf/terms.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/ndf_tables.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
 

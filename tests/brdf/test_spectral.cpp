@@ -3,7 +3,7 @@
 
 #include "brdf/spectral.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
 

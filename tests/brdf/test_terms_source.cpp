@@ -5,8 +5,8 @@
 // - every row of the dispatch table names a block the shader files define.
 
 #include "brdf/dispatch.hpp"
-#include "brdf/terms.hpp"
-#include "core/math.hpp"
+#include "hilite/brdf/terms.hpp"
+#include "hilite/core/math.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,9 +1,9 @@
 // The .brdf parser and parameter values: what BRDF Explorer's files hold, and every malformed case ending
 // in one InputError line that names the file and line.
 
-#include "brdf_file/brdf_file.hpp"
+#include "hilite/brdf_file/brdf_file.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
 

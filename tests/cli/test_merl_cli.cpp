@@ -3,7 +3,7 @@
 
 #include "support/run_hilite.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/merl.hpp"
 
 #include <doctest/doctest.h>

@@ -1,6 +1,6 @@
 // PinholeCamera: rays, projection, pixel solid angles, and the measurement / photo views.
 
-#include "core/camera.hpp"
+#include "hilite/core/camera.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // MirrorChart: the (u, v) chart of ../shared/notes/measurement.md.
 
-#include "core/chart.hpp"
+#include "hilite/core/chart.hpp"
 
 #include <doctest/doctest.h>
 

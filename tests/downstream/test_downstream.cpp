@@ -6,20 +6,21 @@
 #include <hilite/hilite.hpp>
 #include <hilite/version.hpp>
 
-#include "core/error.hpp"
-#include "render/shader_source.hpp"
-
 #include <cmath>
 #include <cstdlib>
-#include <optional>
 #include <string>
 
 namespace {
 
 /// GGX alpha 0.1, implicit geometry, no Fresnel, directional light at `incidenceDeg`, 512 x 512, automatic
 /// framing: the scene named by the registry's parameters, as a scene file or the command line would.
-nlohmann::json measureGgx(double incidenceDeg) {
+/// `other`: measure those values instead (at the same incidence), on the same Session.
+nlohmann::json measureGgx(double incidenceDeg, hilite::scene::Values* other = nullptr) {
     static hilite::measurement::Session session;  // one GL context for every measurement
+    if (other) {
+        other->set("incidence", std::to_string(incidenceDeg));
+        return session.measureOne(hilite::scene::resolve(*other));
+    }
     hilite::scene::Values values;
     values.set("model", "ggx");
     values.set("roughness", "0.1");
@@ -30,22 +31,6 @@ nlohmann::json measureGgx(double incidenceDeg) {
     return session.measureOne(hilite::scene::resolve(values));
 }
 
-/// Sets (or unsets) an environment variable for a scope.
-class ScopedEnv {
-public:
-    ScopedEnv(const char* name, const char* value) : m_name(name) {
-        if (const char* old = std::getenv(name)) m_old = old;
-        value ? setenv(name, value, 1) : unsetenv(name);
-    }
-    ~ScopedEnv() { m_old ? setenv(m_name, m_old->c_str(), 1) : unsetenv(m_name); }
-    ScopedEnv(const ScopedEnv&) = delete;
-    ScopedEnv& operator=(const ScopedEnv&) = delete;
-
-private:
-    const char* m_name;
-    std::optional<std::string> m_old;
-};
-
 }  // namespace
 
 TEST_CASE("the installed version is the package's") {
@@ -55,31 +40,15 @@ TEST_CASE("the installed version is the package's") {
               std::to_string(HILITE_VERSION_PATCH));
 }
 
-TEST_CASE("HILITE_SHARE_DIR names the installed shaders and data") {
-    const char* share = std::getenv("HILITE_SHARE_DIR");
-    REQUIRE(share != nullptr);
-    CHECK(std::string(share) == EXPECTED_SHARE_DIR);
-    CHECK(hilite::render::shaderDirectory() == std::string(share) + "/shaders");
-    CHECK(hilite::render::dataDirectory() == std::string(share) + "/data");
+TEST_CASE("the library loaded is the one the headers belong to") {
+    CHECK(std::string(hilite::libraryVersion()) == hilite::kVersionString);
 }
 
-TEST_CASE("without HILITE_SHARE_DIR the library looks in the install prefix compiled in") {
-    const std::string configured = CONFIGURED_SHARE_DIR;
-    if (configured.empty()) return;  // not told where hilite was configured to go
-    const ScopedEnv noShare("HILITE_SHARE_DIR", nullptr), noShaders("HILITE_SHADER_DIR", nullptr);
-    // This executable is not in <prefix>/bin, so only the compiled-in prefix can hold them: found there, or
-    // named among the places looked in when nothing is installed at the configured prefix.
-    std::string found, error;
-    try {
-        found = hilite::render::shaderDirectory();
-    } catch (const hilite::SystemError& e) {
-        error = e.what();
-    }
-    CAPTURE(error);
-    if (error.empty())
-        CHECK(found == configured + "/shaders");
-    else
-        CHECK(error.find(configured + "/shaders") != std::string::npos);
+TEST_CASE("no environment variable tells the library where its files are") {
+    // The measurements below find shaders, data and the probe helper relative to libhilite.so.
+    CHECK(std::getenv("HILITE_SHARE_DIR") == nullptr);
+    CHECK(std::getenv("HILITE_SHADER_DIR") == nullptr);
+    CHECK(std::getenv("HILITE_DATA_DIR") == nullptr);
 }
 
 TEST_CASE("GGX alpha 0.1 at 60 degrees: the known aspect") {
@@ -113,4 +82,17 @@ TEST_CASE("the typed pipeline: a Scene measured with a MeasureSetup") {
     const auto m = hilite::measurement::measure(&session.rendererFor(r), r.scene, r.setup);
     CHECK(m.shape.aspect > 0.6);
     CHECK(m.shape.aspect < 0.8);
+}
+
+TEST_CASE("a .brdf measured by the installed library, its probe run by the installed helper") {
+    // The prefix holds no hilite executable and PATH names none (run_downstream.cmake): the probe's child
+    // is <prefix>/libexec/hilite-probe. ggx.brdf is GGX's NDF alone, so its aspect is the built-in lobe's.
+    hilite::scene::Values values;
+    values.set("brdf", std::string(EXPECTED_SHARE_DIR) + "/experiments/brdfs/ggx.brdf");
+    values.set("incidence", "60");
+    const double ggx = measureGgx(60.0)["aspect"].get<double>();
+    const auto row = measureGgx(60.0, &values);  // the same Session: one GL context per thread
+    CAPTURE(row.dump());
+    CHECK(row["flags"].empty());
+    CHECK(std::abs(row["aspect"].get<double>() - ggx) < 2e-3);
 }

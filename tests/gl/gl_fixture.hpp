@@ -2,8 +2,8 @@
 // Shared pieces of the GL tests: one context per backend, and the comparison of rendered pixels
 // against the CPU double twin evaluated at each pixel's exitant direction.
 
-#include "brdf/evaluate.hpp"
-#include "core/camera.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/camera.hpp"
 #include "gl/context.hpp"
 #include "render/renderer.hpp"
 

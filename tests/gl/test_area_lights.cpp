@@ -3,8 +3,8 @@
 // the sun's broadening of a narrow lobe with its diagnoses.
 
 #include "measurement/diagnose.hpp"
-#include "measurement/measure_scene.hpp"
-#include "render/area_light.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "hilite/render/area_light.hpp"
 #include "render/cpu_view.hpp"
 
 #include "gl/gl_fixture.hpp"
@@ -43,7 +43,7 @@ double maxRelative(const ImageF& a, const ImageF& b) {
     return worst;
 }
 
-measure::Shape measureShape(const render::Scene& s, int size = 256) {
+analysis::Shape measureShape(const render::Scene& s, int size = 256) {
     measurement::MeasureSetup setup;
     setup.width = setup.height = size;
     return measurement::measureGl(*test::glEnv().renderer, s, setup).shape;
@@ -143,7 +143,7 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
     for (double inc : {30.0, 60.0, 80.0}) {
         CAPTURE(inc);
         const render::Scene dir = ggx(0.1, inc);
-        const measure::Shape a = measureShape(dir), b = measureShape(withDisk(dir, 1e-4));
+        const analysis::Shape a = measureShape(dir), b = measureShape(withDisk(dir, 1e-4));
         CHECK(std::abs(a.aspect - b.aspect) < 1e-3);
         CHECK(b.flags.empty());
     }
@@ -151,7 +151,7 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
     // it rounds the highlight; the automatic rule's aspect is within 1e-3 of 16 rings' (the price list compares
     // both with the exact reference: experiments/accuracy_cost).
     const render::Scene road = ggx(0.02, 80);
-    const measure::Shape dir = measureShape(road), sun = measureShape(withDisk(road, 0.266)),
+    const analysis::Shape dir = measureShape(road), sun = measureShape(withDisk(road, 0.266)),
                          fine = measureShape(withDisk(road, 0.266, 16));
     MESSAGE("GGX 0.02 at 80: aspect " << dir.aspect << " (directional) -> " << sun.aspect << " (sun), at 16 rings "
                                        << fine.aspect);
@@ -163,10 +163,10 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
 TEST_CASE("measurement::measureGl diagnoses: a rule too sparse for the lobe, and a mirror under the sun") {
     // GGX 2e-3 under the sun at 1 ring: the lobe falls between the 4 points of the rule.
     render::Scene s = withDisk(ggx(2e-3, 45), 0.266, 1);
-    CHECK(measureShape(s, 128).has(measure::Flag::LightUndersampled));
+    CHECK(measureShape(s, 128).has(analysis::Flag::LightUndersampled));
     // A perfect mirror reflects the sun's image, which no quadrature of a delta can draw: named, not measured.
     render::Scene mirror = withDisk(ggx(0.0, 60), 0.266);
-    CHECK(measureShape(mirror, 64).has(measure::Flag::Mirror));
+    CHECK(measureShape(mirror, 64).has(analysis::Flag::Mirror));
 }
 
 TEST_CASE("measurement::measureGl extreme lights: a disk centred on the horizon, a sphere almost touching the plane") {

@@ -3,7 +3,7 @@
 
 #include "render/renderer.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl_fixture.hpp"
 
 #include <doctest/doctest.h>

@@ -1,7 +1,7 @@
 #include "gl/context.hpp"
 
 #include "brdf/spectral.hpp"
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl_fixture.hpp"
 
 #include "render/renderer.hpp"

@@ -1,7 +1,7 @@
 // The tabulated NDF in GL: a table sampled from GGX measures like GGX.
 
 #include "brdf/ndf_tables.hpp"
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 #include "gl/gl_fixture.hpp"
 

@@ -1,6 +1,6 @@
 #include "render/renderer.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl_fixture.hpp"
 #include "render/shader_source.hpp"
 

@@ -1,7 +1,7 @@
 // Retroreflection: a lobe about the light direction, 2 theta_i from the mirror direction. The
 // automatic framing finds its peak and measures the highlight about it; ordinary lobes stay about the mirror.
 
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 #include "brdf/ndf_table.hpp"
 #include "measurement/peak_frame.hpp"
 
@@ -112,13 +112,13 @@ TEST_CASE("measurement::measureGl retroreflection: framed and measured about the
         REQUIRE(measurement::frameAboutPeak(s, 0.5));
         const auto m = measurement::measureGl(renderer, s, setup);
         const auto ref = measurement::measureReference(s, setup.options);
-        CHECK_FALSE(m.shape.has(measure::Flag::NoHighlight));
+        CHECK_FALSE(m.shape.has(analysis::Flag::NoHighlight));
         CHECK(std::abs(m.shape.aspect - 1.0) < 2e-3);
         CHECK(m.shape.major_deg == doctest::Approx(ref.shape.major_deg).epsilon(2e-3));
     }
     SUBCASE("about the mirror direction the frame misses it: nothing to measure there") {
         render::Scene s = makeScene(brdf::Model::Retro, 1000, 60);
         s.light.chartCenter = s.light.chart().wr();  // a chart already set: no reframing
-        CHECK(measurement::measureGl(renderer, s, setup).shape.has(measure::Flag::NoHighlight));
+        CHECK(measurement::measureGl(renderer, s, setup).shape.has(analysis::Flag::NoHighlight));
     }
 }

@@ -3,7 +3,7 @@
 // program assembled with only the blocks it runs.
 
 #include "brdf/energy.hpp"
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/ndf_tables.hpp"
 #include "brdf/spectral.hpp"
 #include "gl_fixture.hpp"

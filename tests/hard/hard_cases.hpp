@@ -9,8 +9,8 @@
 //   - term rows (term_cases.cpp): one GLSL term at given arguments against its C++ twin.
 // build/bin/hilite_hard_report prints the measured outcome of every row as docs/hard_cases.md's tables.
 
-#include "measurement/measure_scene.hpp"
-#include "measure/highlight.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "hilite/analysis/highlight.hpp"
 #include "render/renderer.hpp"
 
 #include <functional>
@@ -41,8 +41,8 @@ struct SceneCase {
     render::Scene scene;
     Camera camera;
     measurement::MeasureSetup setup;     ///< the measurement (default: automatic framing, 256^2)
-    std::vector<measure::Flag> glFlags;   ///< exactly the flags the GL measurement must report
-    std::vector<measure::Flag> refFlags;  ///< exactly the flags the double reference must report
+    std::vector<analysis::Flag> glFlags;   ///< exactly the flags the GL measurement must report
+    std::vector<analysis::Flag> refFlags;  ///< exactly the flags the double reference must report
     double tolerance = 0;  ///< GL vs twin, relative, per pixel; 0: pixelTolerance() of the lobe
     double aspectTolerance = 0;  ///< GL vs reference in aspect; 0: the suite's (0.005)
 };
@@ -82,11 +82,11 @@ SceneOutcome runSceneGl(render::Renderer& renderer, const SceneCase& c);
 SceneOutcome runSceneDouble(const SceneCase& c);
 
 /// The shape fields are finite (the reference's minor_pixels is +inf by definition and not a field).
-bool shapeFinite(const measure::Shape& s);
+bool shapeFinite(const analysis::Shape& s);
 /// A measurement answers with numbers (peak > 0 and a semi-major axis > 0) or a diagnosis that replaces
 /// them: no_highlight, mirror, under_resolved.
-bool numbersOrDiagnosis(const measure::Shape& s);
-std::string flagList(const std::vector<measure::Flag>& flags);
+bool numbersOrDiagnosis(const analysis::Shape& s);
+std::string flagList(const std::vector<analysis::Flag>& flags);
 
 // ---- Term rows ----
 

@@ -28,8 +28,8 @@ std::string num(double v, int digits = 3) {
 }
 
 /// "aspect A, major M deg [, flags]" or the diagnosis alone.
-std::string answer(const measure::Shape& s) {
-    using measure::Flag;
+std::string answer(const analysis::Shape& s) {
+    using analysis::Flag;
     const bool shapeless = s.has(Flag::NoHighlight) || s.has(Flag::Mirror) ||
                            (s.has(Flag::UnderResolved) && s.major_deg == 0);
     std::string a = shapeless ? "" : "aspect " + num(s.aspect, 4) + ", major " + num(s.major_deg) + "°";
@@ -57,8 +57,8 @@ void sweep(render::Renderer& renderer) {
                 s.brdf.roughness = a;
                 s.light.incidenceDeg = inc;
                 const double r = measurement::twinLobeWidths(s, 0.5).minor;
-                const measure::Shape g = measurement::measureGl(renderer, s, {}).shape;
-                const measure::Shape ref = measurement::measureReference(s, {}).shape;
+                const analysis::Shape g = measurement::measureGl(renderer, s, {}).shape;
+                const analysis::Shape ref = measurement::measureReference(s, {}).shape;
                 std::cout << "| " << brdf::toString(m) << " " << a << " | " << inc << " | " << num(r, 2) << " | "
                           << num(r / measurement::kFloatDirectionStep, 2) << " | " << num(g.aspect - ref.aspect, 2)
                           << " | " << num(g.major_deg / ref.major_deg - 1, 2) << " | "

@@ -3,7 +3,7 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "measurement/diagnose.hpp"
 
 #include <algorithm>
@@ -133,22 +133,22 @@ SceneOutcome runSceneDouble(const SceneCase& c) {
     return out;
 }
 
-bool shapeFinite(const measure::Shape& s) {
+bool shapeFinite(const analysis::Shape& s) {
     for (double v : {s.peak, s.peak_u_deg, s.peak_v_deg, s.aspect, s.eccentricity, s.major_deg, s.minor_deg,
                      s.orientation_deg, s.centroid_u_deg, s.centroid_v_deg, s.fwhm_u_deg, s.fwhm_v_deg, s.area_deg2})
         if (!std::isfinite(v)) return false;
     return true;
 }
 
-bool numbersOrDiagnosis(const measure::Shape& s) {
-    using measure::Flag;
+bool numbersOrDiagnosis(const analysis::Shape& s) {
+    using analysis::Flag;
     if (s.has(Flag::NoHighlight) || s.has(Flag::Mirror) || s.has(Flag::UnderResolved)) return true;
     return s.peak > 0 && s.major_deg > 0;
 }
 
-std::string flagList(const std::vector<measure::Flag>& flags) {
+std::string flagList(const std::vector<analysis::Flag>& flags) {
     std::ostringstream s;
-    for (size_t i = 0; i < flags.size(); ++i) s << (i ? ", " : "") << measure::toString(flags[i]);
+    for (size_t i = 0; i < flags.size(); ++i) s << (i ? ", " : "") << analysis::toString(flags[i]);
     return flags.empty() ? "none" : s.str();
 }
 

@@ -4,7 +4,7 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
 #include "gl/framebuffer.hpp"
 #include "gl/program.hpp"

@@ -11,7 +11,7 @@ namespace {
 using brdf::Fresnel;
 using brdf::Geometry;
 using brdf::Model;
-using F = measure::Flag;
+using F = analysis::Flag;
 
 struct Row {
     SceneCase c;

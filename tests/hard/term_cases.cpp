@@ -4,7 +4,7 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "brdf/terms.hpp"
+#include "hilite/brdf/terms.hpp"
 
 #include <cmath>
 

@@ -27,7 +27,7 @@ constexpr double kWeightTolerance = 1e-4;
 /// takes the pixel edge as the horizon (measure_image.cpp), a first-order error: 2% on the semi-major axis.
 constexpr double kAspectTolerance = 0.005, kMajorTolerance = 0.01, kMajorToleranceCut = 0.02;
 
-void checkMeasurement(const measure::Shape& s, const std::vector<measure::Flag>& expected) {
+void checkMeasurement(const analysis::Shape& s, const std::vector<analysis::Flag>& expected) {
     INFO("shape: " << s);
     CHECK(shapeFinite(s));
     CHECK(numbersOrDiagnosis(s));
@@ -35,8 +35,8 @@ void checkMeasurement(const measure::Shape& s, const std::vector<measure::Flag>&
 }
 
 /// Diagnoses after which the GL and reference numbers describe different things (or none).
-bool comparable(const measure::Shape& s) {
-    using measure::Flag;
+bool comparable(const analysis::Shape& s) {
+    using analysis::Flag;
     for (Flag f : {Flag::Clipped, Flag::UnderResolved, Flag::NoHighlight, Flag::CoversFrame, Flag::Mirror,
                    Flag::EffectivelyMirror, Flag::UnboundedAtHorizon, Flag::NotStarShaped, Flag::NotConverged,
                    Flag::LightUndersampled})
@@ -57,11 +57,11 @@ void sceneGl(size_t i) {
     CHECK(o.pixels.maxUvError <= kUvTolerance);
     CHECK(o.pixels.maxWeightError <= kWeightTolerance);
     checkMeasurement(o.measurement.shape, c.glFlags);
-    const measure::Shape ref = measurement::measureReference(c.scene, c.setup.options).shape;
+    const analysis::Shape ref = measurement::measureReference(c.scene, c.setup.options).shape;
     if (comparable(o.measurement.shape) && comparable(ref)) {
         INFO("reference: " << ref);
         CHECK(std::abs(o.measurement.shape.aspect - ref.aspect) <= (c.aspectTolerance > 0 ? c.aspectTolerance : kAspectTolerance));
-        const bool cut = o.measurement.shape.has(measure::Flag::HorizonCut);
+        const bool cut = o.measurement.shape.has(analysis::Flag::HorizonCut);
         CHECK(std::abs(o.measurement.shape.major_deg / ref.major_deg - 1.0) <= (cut ? kMajorToleranceCut : kMajorTolerance));
     }
 }

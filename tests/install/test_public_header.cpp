@@ -3,7 +3,7 @@
 
 #include <hilite/hilite.hpp>
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "render/shader_source.hpp"
 
 #include <doctest/doctest.h>

@@ -1,7 +1,7 @@
 // The accuracy knobs against the double reference: the CPU double path against GL, the crop,
 // size and supersampling, and --tolerance. Numbers only: nothing here is timed.
 
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 #include "measurement/tolerance.hpp"
 #include "render/cpu_view.hpp"
 

@@ -82,7 +82,7 @@ TEST_CASE("measurement::measureBlind agrees with twin-seeded framing on built-in
         const auto twin = measurement::measureGl(renderer(), s, {});
         const auto blind = measurement::measureBlind(renderer(), s, {});
         CHECK(blind.framingNote.empty());
-        CHECK_FALSE(blind.shape.has(measure::Flag::Clipped));
+        CHECK_FALSE(blind.shape.has(analysis::Flag::Clipped));
         CHECK(blind.shape.flags == twin.shape.flags);
         CHECK(std::abs(blind.shape.aspect - twin.shape.aspect) < 0.002);
         CHECK(std::abs(blind.shape.major_deg / twin.shape.major_deg - 1.0) < 0.005);
@@ -102,7 +102,7 @@ TEST_CASE("measurement::measureBlind error estimate from resolution convergence 
             setup.width = setup.height = size;
             const auto m = measurement::measureBlind(renderer(), s, setup);
             REQUIRE(m.halfResolution);
-            const measure::Shape& h = *m.halfResolution;
+            const analysis::Shape& h = *m.halfResolution;
             CHECK(std::abs(m.shape.aspect - ref.shape.aspect) <= std::abs(m.shape.aspect - h.aspect) + 1e-6);
             CHECK(std::abs(m.shape.major_deg - ref.shape.major_deg) <= std::abs(m.shape.major_deg - h.major_deg) + 1e-6);
             CHECK(std::abs(m.shape.minor_deg - ref.shape.minor_deg) <= std::abs(m.shape.minor_deg - h.minor_deg) + 1e-6);
@@ -113,13 +113,13 @@ TEST_CASE("measurement::measureBlind error estimate from resolution convergence 
 TEST_CASE("measurement::measureBlind gives up and says so") {
     SUBCASE("a BRDF that is 0 everywhere") {
         const auto m = measurement::measureBlind(renderer(), fromText("return vec3(0.0);", 30), {});
-        CHECK(m.shape.has(measure::Flag::NoHighlight));
+        CHECK(m.shape.has(analysis::Flag::NoHighlight));
         CHECK(m.framingNote.find("no highlight found: zoomed toward the mirror direction down to a 0.0001 deg") == 0);
         CHECK(m.renders <= measurement::MeasureSetup{}.maxBlindRenders + 2);
     }
     SUBCASE("the light at the horizon") {
         const auto m = measurement::measureBlind(renderer(), fromText("return vec3(1.0);", 90), {});
-        CHECK(m.shape.has(measure::Flag::NoHighlight));
+        CHECK(m.shape.has(analysis::Flag::NoHighlight));
         CHECK(m.framingNote == "no light on the plane: it is at or below the horizon");
     }
     SUBCASE("a twin-based measurement refuses a .brdf scene") {

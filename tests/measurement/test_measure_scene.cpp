@@ -1,7 +1,7 @@
 // The highlight measured through GL against theory, the reference table of
 // ../shared/notes/measurement.md, and the CPU double reference.
 
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 
 #include "gl/gl_fixture.hpp"
 #include "support/scenes.hpp"
@@ -112,27 +112,27 @@ TEST_CASE("measurement::measureGl converges to the reference as resolution grows
 
 TEST_CASE("measurement::measureGl diagnostics") {
     SUBCASE("cut by the horizon: GGX alpha 0.3 at 85 degrees") {
-        CHECK(glMeasure(makeScene(brdf::Model::GGX, 0.3, 85)).shape.has(measure::Flag::HorizonCut));
+        CHECK(glMeasure(makeScene(brdf::Model::GGX, 0.3, 85)).shape.has(analysis::Flag::HorizonCut));
     }
     SUBCASE("under-resolved: fixed framing, size 32, a narrow lobe") {
         measurement::MeasureSetup setup;
         setup.fovDeg = 30;
         setup.width = setup.height = 32;
-        CHECK(glMeasure(makeScene(brdf::Model::Blinn, 1e5, 30), setup).shape.has(measure::Flag::UnderResolved));
+        CHECK(glMeasure(makeScene(brdf::Model::Blinn, 1e5, 30), setup).shape.has(analysis::Flag::UnderResolved));
     }
     SUBCASE("no highlight: the light at exactly 90 degrees") {
         const auto m = glMeasure(makeScene(brdf::Model::GGX, 0.1, 90));
-        CHECK(m.shape.has(measure::Flag::NoHighlight));
+        CHECK(m.shape.has(analysis::Flag::NoHighlight));
         CHECK(m.shape.peak == 0.0);
     }
     SUBCASE("clipped: fixed framing too tight") {
         measurement::MeasureSetup setup;
         setup.fovDeg = 5;
-        CHECK(glMeasure(makeScene(brdf::Model::GGX, 0.1, 30), setup).shape.has(measure::Flag::Clipped));
+        CHECK(glMeasure(makeScene(brdf::Model::GGX, 0.1, 30), setup).shape.has(analysis::Flag::Clipped));
     }
     SUBCASE("automatic framing is not clipped and takes few renders") {
         const auto m = glMeasure(makeScene(brdf::Model::Beckmann, 0.05, 60));
-        CHECK_FALSE(m.shape.has(measure::Flag::Clipped));
+        CHECK_FALSE(m.shape.has(analysis::Flag::Clipped));
         CHECK(m.renders <= 3);
     }
 }
@@ -169,7 +169,7 @@ TEST_CASE("measurement::measureGl automatic framing fits non-square frames") {
         const auto m = glMeasure(s, setup);
         const int width = w;
         CAPTURE(width);
-        CHECK_FALSE(m.shape.has(measure::Flag::Clipped));
+        CHECK_FALSE(m.shape.has(analysis::Flag::Clipped));
         CHECK(std::abs(m.shape.aspect - measurement::measureReference(s, {}).shape.aspect) < 0.005);
     }
 }

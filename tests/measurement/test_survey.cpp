@@ -2,7 +2,7 @@
 // scan-line reference built on it.
 
 #include "measurement/lobe_survey.hpp"
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 #include "support/keys.hpp"
 
 #include <doctest/doctest.h>
@@ -48,10 +48,10 @@ TEST_CASE("scan-line reference: every part, each with its own ellipse, the peak'
     CHECK(m.parts[0].holds_peak);
     CHECK(m.parts[1].horizon_cut);
     // The parts' moments add to the whole (disjoint parts: the parallel-axis theorem).
-    const measure::AreaMoments all = measure::combine(m.parts[0].moments, m.parts[1].moments);
+    const analysis::AreaMoments all = analysis::combine(m.parts[0].moments, m.parts[1].moments);
     CHECK(all.area == doctest::Approx(m.moments.area).epsilon(1e-12));
     CHECK(all.cuu == doctest::Approx(m.moments.cuu).epsilon(1e-9));
-    CHECK(m.has(measure::Flag::HorizonCut));
+    CHECK(m.has(analysis::Flag::HorizonCut));
     // The main lobe alone is what the old framing measured (aspect 0.409): the whole region is far narrower.
     CHECK(m.parts[0].aspect == doctest::Approx(0.4086).epsilon(1e-3));
     CHECK(m.aspect < 0.26);
@@ -64,9 +64,9 @@ TEST_CASE("scan-line reference: a region far smaller than its survey box, and on
     CHECK(m.components == 1);
     CHECK(m.area_deg2 > 0);
     CHECK(m.major_deg == doctest::Approx(0.0529).epsilon(0.01));
-    CHECK(m.has(measure::Flag::HorizonCut));
+    CHECK(m.has(analysis::Flag::HorizonCut));
     // 1.7e-7 rad above the horizon: the region meets the horizon only along the line through the peak.
     r = test::resolveKeys("model=ggx roughness=0.1 incidence=89.99999");
     m = measurement::measureReference(r.scene, r.setup.options).shape;
-    CHECK(m.has(measure::Flag::HorizonCut));
+    CHECK(m.has(analysis::Flag::HorizonCut));
 }

@@ -1,8 +1,8 @@
 // The truth suite: GL and the double reference against an exhaustive truth that shares no code with either
 // (scripts/highlight_truth.py, numpy; its output in tests/data/highlight_truth.csv; docs/truth.md).
 
-#include "measurement/measure_scene.hpp"
-#include "measurement/session.hpp"
+#include "hilite/measurement/measure_scene.hpp"
+#include "hilite/measurement/session.hpp"
 #include "support/keys.hpp"
 
 #include "core/csv.hpp"
@@ -79,10 +79,10 @@ TEST_CASE("truth suite: GL and the reference against the exhaustive scan-line tr
         const auto ref = measurement::measureReference(r.scene, r.setup.options).shape;
         const nlohmann::json gl = session.measureOne(r);
         std::string rf, gf;
-        for (auto f : ref.flags) rf += std::string(measure::toString(f)) + ",";
+        for (auto f : ref.flags) rf += std::string(analysis::toString(f)) + ",";
         for (const auto& f : gl["flags"]) gf += f.get<std::string>() + ",";
         if (t.note == "unbounded") {  // no peak: both must say so
-            CHECK(ref.has(measure::Flag::UnboundedAtHorizon));
+            CHECK(ref.has(analysis::Flag::UnboundedAtHorizon));
             CHECK(gf.find("unbounded_at_horizon") != std::string::npos);
             continue;
         }

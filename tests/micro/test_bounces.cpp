@@ -2,10 +2,10 @@
 // microsurface (micro/bounces.hpp), each against what must hold whatever the surface: every path leaves
 // (F = 1), the walk's first order is the analytic single scattering, repeated Fresnel saturates gold.
 
-#include "brdf/colour.hpp"
+#include "hilite/brdf/colour.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
-#include "micro/bounces.hpp"
+#include "hilite/micro/bounces.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
 // Explicit micro-geometry on the CPU: the realised slope distribution of the bump fields, and masking and
 // shadowing traced against the height field beside Smith's G.
 
-#include "micro/bump_field.hpp"
+#include "hilite/micro/bump_field.hpp"
 #include "micro/masking.hpp"
 
 #include <doctest/doctest.h>

@@ -2,9 +2,9 @@
 // disk against Snyder's closed form, the exact integral against an independent albedo quadrature, the GL
 // rule's convergence and automatic choice.
 
-#include "render/area_light.hpp"
+#include "hilite/render/area_light.hpp"
 
-#include "brdf/evaluate.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "core/quadrature.hpp"
 

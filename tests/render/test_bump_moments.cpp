@@ -2,7 +2,7 @@
 // NDF when the moments are Beckmann's, and the filter choice follows the centre pixel's patch count.
 
 #include "brdf/ndf.hpp"
-#include "measurement/measure_scene.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 #include "render/bump_moments.hpp"
 
 #include <doctest/doctest.h>

@@ -1,11 +1,11 @@
 // The parameter registry: every entry well-formed, its defaults valid by its own check, the CLI flags and
 // scene-file keys derived from it, and the README's flag table equal to it.
 
-#include "scene/registry.hpp"
-#include "scene/resolve.hpp"
-#include "scene/scene_file.hpp"
+#include "hilite/scene/registry.hpp"
+#include "hilite/scene/resolve.hpp"
+#include "hilite/scene/scene_file.hpp"
 
-#include "core/error.hpp"
+#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 
 #include <doctest/doctest.h>

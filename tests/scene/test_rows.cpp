@@ -2,7 +2,7 @@
 // to its scene, with the value as resolved (not as typed), and a swept roughness below the clamp is recorded
 // clamped in the experiment's rows.
 
-#include "scene/resolve.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include "support/run_hilite.hpp"
 

@@ -2,7 +2,7 @@
 // A scene from registry keys, the way the truth suite names its cases: "model=ggx roughness=0.1 incidence=60".
 
 #include "core/text.hpp"
-#include "scene/resolve.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <sstream>
 #include <string>

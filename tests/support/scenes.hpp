@@ -1,8 +1,8 @@
 #pragma once
 // Shared scene builders of the GL and experiment tests.
 
-#include "brdf/params.hpp"
-#include "render/scene.hpp"
+#include "hilite/brdf/params.hpp"
+#include "hilite/render/scene.hpp"
 
 namespace hilite::test {
 
