@@ -10,15 +10,15 @@
 
 #include "brdf/merl.hpp"
 #include "brdf/spectral.hpp"
+#include "gl/context.hpp"
 #include "hilite/experiments/fit.hpp"
 #include "hilite/measurement/measure_scene.hpp"
 #include "hilite/measurement/session.hpp"
+#include "hilite/scene/resolve.hpp"
 #include "measurement/tolerance.hpp"
-#include "gl/context.hpp"
 #include "render/cpu_view.hpp"
 #include "render/renderer.hpp"
 #include "render/shader_source.hpp"
-#include "hilite/scene/resolve.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -99,7 +99,8 @@ void BM_MeasureAutoFramedFresh(benchmark::State& state) {
     setup.width = setup.height = 512;
     measurement::measureGl(*env().renderer, ggx(60), setup);  // warm-up: compile, allocate
     long i = 0;
-    for (auto _ : state) benchmark::DoNotOptimize(measurement::measureGl(*env().renderer, ggx(60 + 1e-6 * double(++i)), setup));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(measurement::measureGl(*env().renderer, ggx(60 + 1e-6 * double(++i)), setup));
 }
 BENCHMARK(BM_MeasureAutoFramedFresh)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -181,18 +182,23 @@ render::Scene effectSet(int k) {
     render::Scene s = ggx(60);
     brdf::Params& p = s.brdf;
     if (k >= 1) p.fresnel = brdf::Fresnel::Dielectric, p.geometry = brdf::Geometry::Smith;  // D + F + G
-    if (k >= 2) p.diffuse = brdf::Diffuse::Lambert;                                          // + diffuse
-    if (k >= 3) {                                                                            // + spectral
+    if (k >= 2) p.diffuse = brdf::Diffuse::Lambert;                                         // + diffuse
+    if (k >= 3) {                                                                           // + spectral
         p.spectrum = brdf::loadSpectrum(render::dataDirectory(), "copper", 5);
         p.fresnel = brdf::Fresnel::Spectral;
     }
-    if (k == 4) p.roughnessY = 0.2;  // + anisotropy
+    if (k == 4) p.roughnessY = 0.2;       // + anisotropy
     if (k == 5) p.spectralTable = false;  // + spectral, the exact per-pixel sum (--spectral-fresnel exact)
     if (k == 6) p.geometry = brdf::Geometry::Implicit, p.diffuse = brdf::Diffuse::None;  // NDF + spectral table
     return s;
 }
-const char* kEffectNames[] = {"NDF only", "D+F+G", "+ diffuse", "+ spectral (table)", "+ anisotropy",
-                              "+ spectral (exact)", "NDF + spectral (table)"};
+const char* kEffectNames[] = {"NDF only",
+                              "D+F+G",
+                              "+ diffuse",
+                              "+ spectral (table)",
+                              "+ anisotropy",
+                              "+ spectral (exact)",
+                              "NDF + spectral (table)"};
 
 void BM_EffectSet(benchmark::State& state) {
     const render::Scene s = effectSet(int(state.range(0)));
@@ -251,8 +257,12 @@ BENCHMARK(BM_View)->ArgsProduct({{128, 512}, {0, 1}})->Unit(benchmark::kMillisec
 /// GGX 0.1, height-correlated Smith, Schlick F0 0.04 at 512x512, as text, the way Python hands it over.
 scene::Values sessionValues(const char* incidence) {
     scene::Values v;
-    for (auto [name, text] : {std::pair{"model", "ggx"}, {"roughness", "0.1"}, {"geometry", "smith"},
-                              {"fresnel", "schlick"}, {"f0", "0.04"}, {"size", "512"}})
+    for (auto [name, text] : {std::pair{"model", "ggx"},
+                              {"roughness", "0.1"},
+                              {"geometry", "smith"},
+                              {"fresnel", "schlick"},
+                              {"f0", "0.04"},
+                              {"size", "512"}})
         v.set(name, text);
     v.set("incidence", incidence);
     return v;

@@ -3,9 +3,9 @@
 // as --resume and merge read them, checked against the experiment's configurations by fingerprint, and
 // written as CSV; only InputError may come out.
 
-#include "hilite/core/error.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/results.hpp"
+#include "hilite/core/error.hpp"
 
 #include <cstddef>
 #include <cstdint>

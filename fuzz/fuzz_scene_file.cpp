@@ -11,7 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace hilite;
     try {
-        const scene::Values v = scene::parseSceneToml(std::string(reinterpret_cast<const char*>(data), size), "fuzz.toml");
+        const scene::Values v =
+            scene::parseSceneToml(std::string(reinterpret_cast<const char*>(data), size), "fuzz.toml");
         if (!v.given("brdf") && !v.given("ndf_table")) (void)scene::resolve(v);  // no files opened from fuzz input
     } catch (const InputError&) {
     }

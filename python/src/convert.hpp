@@ -6,9 +6,9 @@
 #include "hilite/scene/registry.hpp"
 #include "hilite/scene/resolve.hpp"
 
-#include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <nlohmann/json.hpp>
 
 #include <string>
 #include <tuple>

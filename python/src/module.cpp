@@ -7,13 +7,13 @@
 #include "gl_worker.hpp"
 
 #include "brdf/bihemispherical.hpp"
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
+#include "experiments/results.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/error.hpp"
 #include "hilite/experiments/bounces.hpp"
 #include "hilite/experiments/fit.hpp"
-#include "experiments/results.hpp"
 #include "hilite/experiments/run.hpp"
 #include "hilite/hilite.hpp"
 #include "io/image_io.hpp"
@@ -135,7 +135,8 @@ py::tuple renderScene(const Items& items, bool maps) {
         size_t nonFinite = 0;
         for (float v : color.data) nonFinite += !std::isfinite(v);
         if (nonFinite)
-            throw InputError("render: " + std::to_string(nonFinite) + " pixel values are NaN or Inf (the BRDF is not "
+            throw InputError("render: " + std::to_string(nonFinite) +
+                             " pixel values are NaN or Inf (the BRDF is not "
                              "finite there, e.g. a lobe infinite at its peak)");
     }
     const py::array_t<float> img = python::topDown(color, {0, 1, 2});
@@ -201,7 +202,8 @@ py::list bouncesOf(const Items& items, long paths, int batches, uint64_t seed, i
         experiments::checkBounceSettings(s, false);
         const scene::Values values = python::values(items);
         experiments::resolveBounceScene(values);
-        for (const auto& study : experiments::studyBounces(values, s)) rows.push_back(experiments::bounceRow(study).dump());
+        for (const auto& study : experiments::studyBounces(values, s))
+            rows.push_back(experiments::bounceRow(study).dump());
     }
     py::list out;
     for (const auto& j : rows) out.append(python::toPython(nlohmann::json::parse(j)));
@@ -212,7 +214,8 @@ py::array_t<double> bihemispherical(const Items& items) {
     std::vector<dvec3> v;
     {
         py::gil_scoped_release release;
-        v.push_back(brdf::bihemisphericalAlbedo(scene::resolve(python::values(items), scene::Purpose::Brdf).scene.brdf));
+        v.push_back(
+            brdf::bihemisphericalAlbedo(scene::resolve(python::values(items), scene::Purpose::Brdf).scene.brdf));
     }
     return rgbRows(v);
 }
@@ -221,8 +224,10 @@ double normalizationOf(const Items& items) {
     py::gil_scoped_release release;
     const scene::Resolved r = scene::resolve(python::values(items), scene::Purpose::Brdf);
     if (!brdf::isMicrofacet(r.scene.brdf.model))
-        throw InputError(r.values.where("model") + ": normalization needs an NDF: blinn, gaussian, beckmann, ggx, "
-                                                   "tabulated (got '" + r.values.text("model") + "')");
+        throw InputError(r.values.where("model") +
+                         ": normalization needs an NDF: blinn, gaussian, beckmann, ggx, "
+                         "tabulated (got '" +
+                         r.values.text("model") + "')");
     return brdf::ndfIntegral(r.scene.brdf);
 }
 

@@ -450,7 +450,8 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     const Pixels px{pixels, width, height, dense.get()};
     Shape s;
     Survey sv = survey(px);
-    if (!(sv.peak > 0.f) || (opt.level > 0 && double(sv.peak) < opt.level)) {  // all dark, nothing visible or above the level
+    if (!(sv.peak > 0.f) ||
+        (opt.level > 0 && double(sv.peak) < opt.level)) {  // all dark, nothing visible or above the level
         s.flags.push_back(Flag::NoHighlight);
         return s;
     }

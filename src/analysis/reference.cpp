@@ -153,8 +153,7 @@ AreaMoments polarMoments(const std::vector<double>& r, dvec2 p) {
 /// Whether a point of the coarse grid over the search disc is in the region yet beyond the contour r(phi)
 /// seen from the peak p (with 0.1% to spare for the chord between rays): then the region is not star-shaped
 /// about p (a ring, two lobes) and the polar moments silently miss part of it.
-bool beyondContour(const LobeFunction& f, const std::vector<double>& r, dvec2 p, double T, dvec2 hint,
-                   double radius) {
+bool beyondContour(const LobeFunction& f, const std::vector<double>& r, dvec2 p, double T, dvec2 hint, double radius) {
     const int K = int(r.size());
     const double cell = 2.0 * radius / kCoarseGrid;
     for (int j = 0; j < kCoarseGrid; ++j) {

@@ -6,9 +6,9 @@
 
 #include "hilite/analysis/highlight.hpp"
 
+#include "core/quadrature.hpp"
 #include "hilite/core/error.hpp"
 #include "hilite/core/math.hpp"
-#include "core/quadrature.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,8 +24,8 @@ namespace {
 
 constexpr int kSamples = 512;  ///< samples per line across each box: finds every interval >= 1/128 of the box wide
 constexpr double kTol = 1e-7;  ///< the moments' error, relative to their scale, shared over the panels
-constexpr int kMaxDepth = 40;     ///< panel halvings below a box's v-range
-constexpr int kMaxGrowth = 8;     ///< box enlargements before giving up (the region runs past the chart)
+constexpr int kMaxDepth = 40;  ///< panel halvings below a box's v-range
+constexpr int kMaxGrowth = 8;  ///< box enlargements before giving up (the region runs past the chart)
 /// Panels before the integration stops refining and says so (NotConverged): ~1 s. A lobe far thinner than its
 /// box everywhere (anisotropic Beckmann 1e-4 x 1) would otherwise take minutes.
 constexpr int kMaxPanels = 800;
@@ -100,7 +100,10 @@ public:
     /// Distance from p along the unit direction d to where the region ends (bisection to 1e-15 rad);
     /// `horizon`: it ends at the horizon.
     double reach(dvec2 p, dvec2 d, bool& horizon) const {
-        auto inAt = [&](double r) { const dvec2 q = p + r * d; return in(q.x, q.y); };
+        auto inAt = [&](double r) {
+            const dvec2 q = p + r * d;
+            return in(q.x, q.y);
+        };
         double lo = 0, hi = 1e-9;
         while (hi < 2 * kPi && inAt(hi)) lo = hi, hi *= 1.5;
         for (int i = 0; i < 100 && hi - lo > 1e-15; ++i) {
@@ -114,7 +117,10 @@ public:
 
     std::vector<ChartBox>& boxes() { return m_boxes; }
     bool grew() const { return m_grew; }
-    void resetGrew() { m_grew = false; m_done.clear(); }
+    void resetGrew() {
+        m_grew = false;
+        m_done.clear();
+    }
     const LobeFunction& f() const { return m_f; }
     double T() const { return m_T; }
 
@@ -228,7 +234,8 @@ public:
         std::sort(spans.begin(), spans.end());
         std::vector<std::pair<double, double>> merged;
         for (auto s : spans) {
-            if (!merged.empty() && s.first <= merged.back().second) merged.back().second = std::max(merged.back().second, s.second);
+            if (!merged.empty() && s.first <= merged.back().second)
+                merged.back().second = std::max(merged.back().second, s.second);
             else merged.push_back(s);
         }
         // The ends of every span must be outside the region, or the box grows in v.
@@ -297,7 +304,8 @@ private:
             ls[size_t(i)].weight = h * kWgk[size_t(j)];
             const Vec6 f = integrand(ls[size_t(i)].iv, ls[size_t(i)].v, m_p);
             const double wg = (j % 2 == 1) ? kWg[size_t(j / 2)] : 0.0;  // Gauss nodes: odd indices of xgk
-            for (int q = 0; q < 6; ++q) k[size_t(q)] += kWgk[size_t(j)] * f[size_t(q)], g[size_t(q)] += wg * f[size_t(q)];
+            for (int q = 0; q < 6; ++q)
+                k[size_t(q)] += kWgk[size_t(j)] * f[size_t(q)], g[size_t(q)] += wg * f[size_t(q)];
         }
         double err = 0;
         for (int q = 0; q < 6; ++q) err = std::max(err, h * std::abs(k[size_t(q)] - g[size_t(q)]) / m_scale[size_t(q)]);
@@ -396,7 +404,8 @@ Shape measureLines(const LobeFunction& f, const Options& opt, double peak, doubl
             const ChartBox& b = bx[k];
             const bool inside = u >= b.u0 && u <= b.u1 && v >= b.v0 && v <= b.v1;
             const double d = (inside ? 0.0 : 1e100) +
-                             (std::isfinite(b.su) ? std::hypot(u - b.su, v - b.sv) : std::hypot(u - 0.5 * (b.u0 + b.u1), v - 0.5 * (b.v0 + b.v1)));
+                             (std::isfinite(b.su) ? std::hypot(u - b.su, v - b.sv)
+                                                  : std::hypot(u - 0.5 * (b.u0 + b.u1), v - 0.5 * (b.v0 + b.v1)));
             if (d < bestD) bestD = d, best = int(k);
         }
         return best;
@@ -426,7 +435,9 @@ Shape measureLines(const LobeFunction& f, const Options& opt, double peak, doubl
             if (partOf[size_t(root)] < 0) partOf[size_t(root)] = int(sums.size()), sums.push_back({}), cut.push_back(0);
             const int k = partOf[size_t(root)];
             const Vec6 g = integrand({lines[i].iv[a]}, lines[i].v, p);
-            for (int q = 0; q < 6; ++q) sums[size_t(k)][size_t(q)] += lines[i].weight * g[size_t(q)], all[size_t(q)] += lines[i].weight * g[size_t(q)];
+            for (int q = 0; q < 6; ++q)
+                sums[size_t(k)][size_t(q)] += lines[i].weight * g[size_t(q)],
+                    all[size_t(q)] += lines[i].weight * g[size_t(q)];
             cut[size_t(k)] = cut[size_t(k)] || lines[i].iv[a].horizon;
             anyCut = anyCut || lines[i].iv[a].horizon;
         }

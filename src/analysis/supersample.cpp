@@ -29,7 +29,7 @@ void Supersampler::add(const float* pixels) {
     const size_t n = m_sums.size(), s = size_t(m_added), k = size_t(m_samples);
     for (size_t p = 0; p < n; ++p) {
         const float* q = pixels + 4 * p;
-        if (!(q[3] > 0.f)) continue;  // sees no surface: stays -1, adds nothing to the position
+        if (!(q[3] > 0.f)) continue;          // sees no surface: stays -1, adds nothing to the position
         const float L = std::max(0.f, q[0]);  // (a negative or NaN L counts as 0, as in measureImage)
         m_L[p * k + s] = L;
         PixelSums& ps = m_sums[p];
@@ -90,8 +90,13 @@ Shape Supersampler::measure(const Options& opt) const {
         return s;
     }
     const size_t n = m_sums.size(), k = size_t(m_samples);
-    Combined c{m_width, m_height, std::vector<double>(n, 0.0), std::vector<double>(n, 0.0),
-               std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<char>(n, 0),
+    Combined c{m_width,
+               m_height,
+               std::vector<double>(n, 0.0),
+               std::vector<double>(n, 0.0),
+               std::vector<double>(n, 0.0),
+               std::vector<double>(n, 0.0),
+               std::vector<char>(n, 0),
                std::vector<char>(n, 0)};
     for (size_t p = 0; p < n; ++p) {
         const PixelSums& ps = m_sums[p];

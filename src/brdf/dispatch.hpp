@@ -34,8 +34,8 @@ using LambdaRow = TermRow<double (*)(const Params&, const dvec3& w)>;
 using FresnelRow = TermRow<dvec3 (*)(const Params&, double VoH)>;
 /// D G / (4 cos_i cos_o) from D; `glsl` is a statement updating s = D in place. lambdaI, lambdaO: Lambda(wi),
 /// Lambda(wo) of the model's LambdaRow, computed by the caller for the Smith rows only (usesSmith), else 0.
-using GeometryRow = TermRow<double (*)(const HalfVector& hv, const dvec3& wi, const dvec3& wo, double D,
-                                       double lambdaI, double lambdaO)>;
+using GeometryRow = TermRow<double (*)(const HalfVector& hv, const dvec3& wi, const dvec3& wo, double D, double lambdaI,
+                                       double lambdaO)>;
 /// The diffuse term from wi, wo.
 using DiffuseRow = TermRow<dvec3 (*)(const Params&, const dvec3& wi, const dvec3& wo)>;
 /// The multiple-scattering term from wi, wo (reads Params::energy).

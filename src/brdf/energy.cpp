@@ -1,8 +1,8 @@
 #include "brdf/energy.hpp"
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <cmath>
 #include <iomanip>
@@ -102,8 +102,8 @@ std::string keyOf(const Params& p) {
     Params q = p;
     q.diffuse = Diffuse::None;  // the albedo rho and sigma do not enter the tables
     std::ostringstream s;
-    s << std::setprecision(17) << q << " coupled=" << (p.diffuse == Diffuse::Coupled) << " spectral_step="
-      << (p.spectrum ? p.spectrum->size() : 0);
+    s << std::setprecision(17) << q << " coupled=" << (p.diffuse == Diffuse::Coupled)
+      << " spectral_step=" << (p.spectrum ? p.spectrum->size() : 0);
     return s.str();
 }
 
@@ -127,8 +127,9 @@ std::string energyRefusal(const Params& p) {
             return std::string("needs a microfacet model (blinn, gaussian, beckmann, ggx, tabulated; got ") +
                    toString(p.model) + ")";
         if (p.geometry != Geometry::Smith && p.geometry != Geometry::SmithSeparable)
-            return std::string("needs --geometry smith or smith-separable: the energy it returns is what Smith "
-                               "masking takes from single scattering (got ") +
+            return std::string(
+                       "needs --geometry smith or smith-separable: the energy it returns is what Smith "
+                       "masking takes from single scattering (got ") +
                    toString(p.geometry) + ")";
     }
     if (roughnessModel && p.roughness < kMinIntegrableRoughness)
@@ -171,8 +172,8 @@ std::string describeEnergy(const Params& p) {
     if (!t.E.empty() && !t.Es.empty()) s << "; ";
     if (!t.Es.empty())
         s << "coupled diffuse: E_s(mu) the specular albedo, " << kEnergyTableSize
-          << " entries (worst error at the midpoints " << t.esError << "), E_s_avg = " << t.EsAvg.x << ","
-          << t.EsAvg.y << "," << t.EsAvg.z;
+          << " entries (worst error at the midpoints " << t.esError << "), E_s_avg = " << t.EsAvg.x << "," << t.EsAvg.y
+          << "," << t.EsAvg.z;
     return s.str();
 }
 

@@ -38,8 +38,8 @@ struct EnergyTables {
     /// coupled: specular albedo (lobe + multiple scattering) per entry, raised by esError (at most 1) so the
     /// interpolant stays above the true E_s and specular + diffuse <= 1 holds through the table (empty otherwise)
     std::vector<dvec3> Es;
-    dvec3 EsAvg{0.0};       ///< 2 int E_s mu dmu of the interpolated table
-    double esError = 0.0;   ///< as eError, for E_s (the largest channel)
+    dvec3 EsAvg{0.0};      ///< 2 int E_s mu dmu of the interpolated table
+    double esError = 0.0;  ///< as eError, for E_s (the largest channel)
 };
 
 /// Why p cannot carry the energy terms it names ("" when it can): multiscatter needs an isotropic microfacet

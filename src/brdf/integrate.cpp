@@ -3,9 +3,9 @@
 #include "brdf/merl.hpp"
 
 #include "brdf/energy.hpp"
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/ndf_table.hpp"
 #include "core/quadrature.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <cmath>
 #include <limits>
@@ -50,8 +50,7 @@ auto integrateCircle(F&& f, std::vector<AzimuthBreak> breaks) -> decltype(f(0.0)
     for (const AzimuthBreak& b : breaks) {
         if (!merged.empty() && b.at - merged.back().at < 1e-12)
             merged.back().scale = std::min(merged.back().scale, b.scale);
-        else
-            merged.push_back(b);
+        else merged.push_back(b);
     }
     if (merged.size() > 1 && merged.front().at + 2.0 * kPi - merged.back().at < 1e-12) {
         merged.front().scale = std::min(merged.front().scale, merged.back().scale);
@@ -97,7 +96,9 @@ Azimuth stretchedAzimuth(double psi, double ax, double ay) {
     return {std::atan2(ay * s, ax * c), ax * ay / r2, std::sqrt(r2)};
 }
 /// The inverse: psi of the tangent-frame azimuth phi.
-double unstretchedAzimuth(double phi, double ax, double ay) { return std::atan2(ax * std::sin(phi), ay * std::cos(phi)); }
+double unstretchedAzimuth(double phi, double ax, double ay) {
+    return std::atan2(ax * std::sin(phi), ay * std::cos(phi));
+}
 
 /// The horizon in the half-vector domain. For h at polar angle t and azimuth phi, wi.h = A sin t + B cos t
 /// with A = sin(theta_i) cos(phi - phi_i), B = cos(theta_i); then wo = 2 (wi.h) h - wi has
@@ -183,9 +184,8 @@ auto integrateOverReflectedH(const Params& p, const dvec3& wi, G&& g) -> decltyp
         edges.clear();
         if (p.geometry == Geometry::CookTorrance) cookTorranceEdges(hz, edges);
         tableEdges(p, hz.tHorizon, edges);
-        return az.jacobian *
-               integrateGraded([&](double t) { return g(sphericalDirection(t, phi)) * std::sin(t); }, hz.tHorizon,
-                               width, edges);
+        return az.jacobian * integrateGraded([&](double t) { return g(sphericalDirection(t, phi)) * std::sin(t); },
+                                             hz.tHorizon, width, edges);
     };
     return integrateCircle(overT, breaks);
 }
@@ -270,12 +270,9 @@ const GaussLegendre& gaussLegendre() {
 
 double lobeWidth(const Params& p) {
     double w = 0.5 * kPi;
-    if (usesExponent(p.model))
-        w = std::sqrt(2.0 / (p.exponent + 2.0));
-    else if (p.model == Model::Tabulated && p.ndfTable)
-        w = p.ndfTable->halfWidth;
-    else if (p.model != Model::None)
-        w = std::atan(std::min(p.alphaX(), p.alphaY()));
+    if (usesExponent(p.model)) w = std::sqrt(2.0 / (p.exponent + 2.0));
+    else if (p.model == Model::Tabulated && p.ndfTable) w = p.ndfTable->halfWidth;
+    else if (p.model != Model::None) w = std::atan(std::min(p.alphaX(), p.alphaY()));
     // 1e-6: n = 1e8 would give 1.4e-4 anyway; the floor only keeps the first panel of a degenerate
     // width non-empty. pi/2: the hemisphere.
     return std::clamp(w, 1e-6, 0.5 * kPi);
@@ -310,11 +307,10 @@ double ndfIntegral(const Params& p) {
 dvec3 albedo(const Params& p, double thetaDeg, double phiDeg) {
     const dvec3 wi = sphericalDirectionDeg(thetaDeg, phiDeg);
     if (wi.z <= 0.0) return dvec3(0.0);  // light at or below the horizon: nothing is received
-    dvec3 rho = p.diffuse == Diffuse::None      ? dvec3(0.0)
-                : p.diffuse == Diffuse::Coupled ? energyAlbedo(wi, [&](const dvec3& a, const dvec3& b) {
-                                                      return evaluateDiffuse(p, a, b);
-                                                  })
-                                                : diffuseAlbedo(p, wi);
+    dvec3 rho = p.diffuse == Diffuse::None ? dvec3(0.0)
+                : p.diffuse == Diffuse::Coupled
+                    ? energyAlbedo(wi, [&](const dvec3& a, const dvec3& b) { return evaluateDiffuse(p, a, b); })
+                    : diffuseAlbedo(p, wi);
     if (p.multiscatter != Multiscatter::None)
         rho += energyAlbedo(wi, [&](const dvec3& a, const dvec3& b) { return evaluateMultiscatter(p, a, b); });
     if (isMicrofacet(p.model) || p.measured)  // a table over half/difference angles: integrated over h too

@@ -1,8 +1,8 @@
 #include "brdf/merl.hpp"
 
+#include "core/files.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
-#include "core/files.hpp"
 
 #include <sys/stat.h>
 
@@ -95,7 +95,7 @@ AxisWeights axisWeights(double u, int bins, bool wrap) {
 }
 
 CubicWeights cubicWeights(double u, int bins) {
-    CubicWeights c;  // bin 0 alone: for NaN, as multilinear
+    CubicWeights c;            // bin 0 alone: for NaN, as multilinear
     const double s = u - 0.5;  // in units of bins from the first centre
     if (!(s == s)) return c;
     if (s >= bins - 1) {  // beyond the last centre: the edge bin, as multilinear
@@ -125,7 +125,8 @@ Gathered gather(const MeasuredBrdf& m, double thetaH, double thetaD, double phiD
     const double uh = thetaHalfCoord(thetaH), ud = thetaDiffCoord(thetaD), up = phiDiffCoord(phiD);
     Gathered g;
     if (how == Interpolation::Nearest) {
-        const std::size_t i = flatIndex(nearestBin(uh, kThetaHBins), nearestBin(ud, kThetaDBins), nearestBin(up, kPhiDBins));
+        const std::size_t i =
+            flatIndex(nearestBin(uh, kThetaHBins), nearestBin(ud, kThetaDBins), nearestBin(up, kPhiDBins));
         if (m.hasData(i)) g = {m.bin(i), 1.0};
         return g;
     }
@@ -219,8 +220,8 @@ void putLittle(std::string& out, std::uint64_t u, int bytes) {
 MeasuredBrdf parse(const std::string& bytes, const std::string& path, const std::string& what) {
     const std::string file = what + ": '" + path + "' ";
     if (bytes.size() < kHeaderBytes)
-        throw InputError(file + "is " + std::to_string(bytes.size()) + " bytes, too short for a MERL header; a MERL file is " +
-                         expectedSize() + " bytes");
+        throw InputError(file + "is " + std::to_string(bytes.size()) +
+                         " bytes, too short for a MERL header; a MERL file is " + expectedSize() + " bytes");
     const std::int32_t dims[3] = {readInt32(bytes, 0), readInt32(bytes, 4), readInt32(bytes, 8)};
     // Stricter than BRDFRead, which checks only the product: another order would index a different table.
     if (dims[0] != kThetaHBins || dims[1] != kThetaDBins || dims[2] != kPhiDBins)
@@ -237,8 +238,9 @@ MeasuredBrdf parse(const std::string& bytes, const std::string& path, const std:
         if (!std::isfinite(v)) {
             const std::size_t e = i % kEntries;
             throw InputError(file + "has a" + std::string(std::isnan(v) ? " NaN" : "n infinite") + " entry in the " +
-                             kChannel[i / kEntries] + " plane (theta_h bin " + std::to_string(e / (kThetaDBins * kPhiDBins)) +
-                             ", theta_d bin " + std::to_string(e / kPhiDBins % kThetaDBins) + ", phi_d bin " +
+                             kChannel[i / kEntries] + " plane (theta_h bin " +
+                             std::to_string(e / (kThetaDBins * kPhiDBins)) + ", theta_d bin " +
+                             std::to_string(e / kPhiDBins % kThetaDBins) + ", phi_d bin " +
                              std::to_string(e % kPhiDBins) + "); entries are finite, negative for no data");
         }
         m.raw[i] = v;
@@ -266,7 +268,8 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
     const long long size = known ? (long long)st.st_size : -1;
     const long long mtime = known ? (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec : -1;
     std::lock_guard<std::mutex> lock(mutex);
-    if (auto it = cache.find(path); known && it != cache.end() && it->second.size == size && it->second.mtimeNs == mtime)
+    if (auto it = cache.find(path);
+        known && it != cache.end() && it->second.size == size && it->second.mtimeNs == mtime)
         return it->second.table;
     auto table = std::make_shared<const MeasuredBrdf>(read(path, what));  // throws before the cache changes
     cache[path] = Entry{size, mtime, table};
@@ -315,7 +318,8 @@ void halveAxis(MeasuredBrdf& m, std::size_t stride, int bins, bool wrap, bool cu
 
 }  // namespace
 
-std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const MeasuredBrdf>& table, int axis, int parity) {
+std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const MeasuredBrdf>& table, int axis,
+                                                   int parity) {
     struct Entry {
         std::weak_ptr<const MeasuredBrdf> table;
         int axis, parity;
@@ -324,12 +328,14 @@ std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const M
     static std::mutex mutex;
     static std::vector<Entry> cache;
     const std::lock_guard<std::mutex> lock(mutex);
-    cache.erase(std::remove_if(cache.begin(), cache.end(), [](const Entry& e) { return e.table.expired(); }), cache.end());
+    cache.erase(std::remove_if(cache.begin(), cache.end(), [](const Entry& e) { return e.table.expired(); }),
+                cache.end());
     for (const Entry& e : cache)
         if (e.axis == axis && e.parity == parity && e.table.lock() == table) return e.half;
     auto half = std::make_shared<MeasuredBrdf>(*table);
     static const char* const names[] = {"theta_h", "theta_d", "phi_d"};
-    half->path = table->path + " (half resolution in " + names[std::clamp(axis, 0, 2)] + (parity ? ", odd bins" : ", even bins") + " interpolated)";
+    half->path = table->path + " (half resolution in " + names[std::clamp(axis, 0, 2)] +
+                 (parity ? ", odd bins" : ", even bins") + " interpolated)";
     if (axis == 2) halveAxis(*half, 1, kPhiDBins, true, false, parity);
     else if (axis == 1) halveAxis(*half, std::size_t(kPhiDBins), kThetaDBins, false, false, parity);
     else halveAxis(*half, std::size_t(kPhiDBins) * kThetaDBins, kThetaHBins, false, true, parity);

@@ -138,7 +138,8 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
 /// spacing. A bin whose neighbours lack data keeps the mean of those with data, or stays as it was.
 /// `axis`: 0 theta_h, 1 theta_d, 2 phi_d (the other two keep their resolution). Made once per table and axis
 /// (cached while the table lives). Thread-safe.
-std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const MeasuredBrdf>& table, int axis, int parity);
+std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const MeasuredBrdf>& table, int axis,
+                                                   int parity);
 
 /// The bytes of a MERL file holding `table` (header 90, 90, 180 and its raw entries, little-endian): the
 /// caller writes them (atomically, io::writeFileAtomic; brdf depends on core only).

@@ -2,9 +2,9 @@
 
 #include "core/csv.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
+#include "hilite/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -122,7 +122,7 @@ double D_Tabulated(double NoH, double sin2h, const NdfTable& t) {
     const double th = std::atan2(std::sqrt(sin2h), NoH);
     const size_t n = t.theta.size();
     if (th >= t.theta[n - 1]) return th == t.theta[n - 1] ? t.D[n - 1] : 0.0;  // beyond the table: 0
-    size_t lo = 0, hi = n - 1;  // invariant: theta[lo] <= th < theta[hi]
+    size_t lo = 0, hi = n - 1;                                                 // invariant: theta[lo] <= th < theta[hi]
     while (hi - lo > 1) {
         const size_t mid = (lo + hi) / 2;
         (t.theta[mid] <= th ? lo : hi) = mid;

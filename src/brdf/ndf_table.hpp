@@ -29,8 +29,8 @@ struct NdfTable {
     std::vector<double> projectedArea;
 
     static constexpr int kMinRows = 2;
-    static constexpr int kMaxRows = 1024;    ///< GPU: rows are a uniform array, two to a vec4 (512 vec4)
-    static constexpr int kLambdaRows = 91;   ///< one a degree
+    static constexpr int kMaxRows = 1024;   ///< GPU: rows are a uniform array, two to a vec4 (512 vec4)
+    static constexpr int kLambdaRows = 91;  ///< one a degree
 };
 
 /// Reads, checks and normalizes a table. Throws InputError "file:line: ..." (or "file: ..." when unreadable).

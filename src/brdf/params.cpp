@@ -24,8 +24,8 @@ std::vector<std::string> names(const E (&all)[N]) {
     return out;
 }
 
-constexpr Model kModels[] = {Model::Phong,    Model::PhongClassic, Model::Blinn, Model::Gaussian,
-                             Model::Beckmann, Model::GGX,          Model::None,  Model::Retro, Model::Tabulated};
+constexpr Model kModels[] = {Model::Phong, Model::PhongClassic, Model::Blinn, Model::Gaussian, Model::Beckmann,
+                             Model::GGX,   Model::None,         Model::Retro, Model::Tabulated};
 constexpr Fresnel kFresnels[] = {Fresnel::None, Fresnel::Schlick, Fresnel::Dielectric, Fresnel::Conductor,
                                  Fresnel::Spectral};
 constexpr Geometry kGeometries[] = {Geometry::None, Geometry::Implicit, Geometry::CookTorrance,
@@ -122,15 +122,15 @@ std::ostream& operator<<(std::ostream& os, Diffuse d) { return os << toString(d)
 std::ostream& operator<<(std::ostream& os, Multiscatter m) { return os << toString(m); }
 
 std::ostream& operator<<(std::ostream& os, const Params& p) {
-    if (p.measured) return os << "measured=" << p.measured->path << " (MERL table, multilinear; no_data_bins=" << p.measured->noData << ")";
+    if (p.measured)
+        return os << "measured=" << p.measured->path << " (MERL table, multilinear; no_data_bins=" << p.measured->noData
+                  << ")";
     os << "model=" << toString(p.model);
-    if (usesExponent(p.model))
-        os << " exponent=" << p.exponent;
+    if (usesExponent(p.model)) os << " exponent=" << p.exponent;
     else if (p.model == Model::Tabulated && p.ndfTable)
         os << " ndf_table=" << p.ndfTable->file << " rows=" << p.ndfTable->theta.size()
            << " normalization=" << p.ndfTable->normalization;
-    else if (p.model != Model::None)
-        os << " roughness=" << p.roughness;
+    else if (p.model != Model::None) os << " roughness=" << p.roughness;
     if (p.anisotropic() && allowsAnisotropy(p.model))
         os << " roughness-y=" << p.alphaY() << " tangent-angle=" << p.tangentAngleDeg;
     if (isMicrofacet(p.model)) {

@@ -1,8 +1,8 @@
 #include "hilite/brdf_file/brdf_file.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
+#include "hilite/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,7 +48,8 @@ bool parseNumber(const std::string& text, double& v) {
 
 bool isIdentifier(const std::string& s) {
     if (s.empty() || s.size() > 256 || std::isdigit(static_cast<unsigned char>(s[0]))) return false;
-    return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    return std::all_of(s.begin(), s.end(),
+                       [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 std::string at(const std::string& path, int line) { return path + ":" + std::to_string(line) + ": "; }
@@ -72,23 +73,23 @@ Parameter parseParameter(const std::string& line, const std::string& path, int l
                                               : "color NAME R G B";
     if (type != "float" && type != "bool" && type != "color")
         throw InputError(where + "unknown parameter type '" + type + "' (allowed: float, bool, color)");
-    if (w.size() != expected)
-        throw InputError(where + "bad parameter line '" + trim(line) + "': expected " + form);
+    if (w.size() != expected) throw InputError(where + "bad parameter line '" + trim(line) + "': expected " + form);
     p.name = w[1];
     if (!isIdentifier(p.name) || p.name.rfind("gl_", 0) == 0 || p.name.find("__") != std::string::npos)
         throw InputError(where + "parameter name '" + p.name +
                          "' is not a GLSL identifier (letters, digits, '_'; no 'gl_' prefix, no '__')");
     if (type == "bool") {
         p.type = ParamType::Bool;
-        if (w[2] != "0" && w[2] != "1") throw InputError(where + "bool " + p.name + ": default must be 0 or 1 (got '" + w[2] + "')");
+        if (w[2] != "0" && w[2] != "1")
+            throw InputError(where + "bool " + p.name + ": default must be 0 or 1 (got '" + w[2] + "')");
         p.value.x = w[2] == "1" ? 1.0 : 0.0;
         return p;
     }
     double v[3];
     for (int i = 0; i < 3; ++i)
         if (!parseNumber(w[size_t(2 + i)], v[i]))
-            throw InputError(where + type + " " + p.name + ": '" + w[size_t(2 + i)] + "' is not a finite number (expected " +
-                             form + ")");
+            throw InputError(where + type + " " + p.name + ": '" + w[size_t(2 + i)] +
+                             "' is not a finite number (expected " + form + ")");
     if (type == "color") {
         p.type = ParamType::Color;
         p.value = dvec3(v[0], v[1], v[2]);
@@ -139,8 +140,8 @@ bool definesBrdf(const std::string& glsl, std::string& why) {
 
 /// "#define X", "# if", ...: a line the GLSL preprocessor would have read.
 bool isDirective(const std::string& trimmed) {
-    static const char* const kDirectives[] = {"define", "undef", "if", "ifdef", "ifndef", "else", "elif", "endif",
-                                              "version", "extension", "pragma", "line", "error", "include"};
+    static const char* const kDirectives[] = {"define", "undef",   "if",        "ifdef",  "ifndef", "else",  "elif",
+                                              "endif",  "version", "extension", "pragma", "line",   "error", "include"};
     if (trimmed.empty() || trimmed[0] != '#') return false;
     const auto w = words(trim(trimmed.substr(1)) + " ");
     const std::string first = w.empty() ? "" : w[0].substr(0, w[0].find_first_of("(<\""));
@@ -180,8 +181,8 @@ BrdfFile parse(const std::string& text, const std::string& path) {
     std::istringstream in(text);
     std::string line;
     int lineNo = 0;
-    Section open;                  // the section being read; name "" outside any
-    std::string shaderSeen;        // "" until the shader section closes
+    Section open;            // the section being read; name "" outside any
+    std::string shaderSeen;  // "" until the shader section closes
     bool noteDirective = false;
     int shaderEnd = 0;
     while (std::getline(in, line)) {
@@ -192,8 +193,9 @@ BrdfFile parse(const std::string& text, const std::string& path) {
             const auto w = words(line);
             const std::string kind = w.empty() ? "" : w[0];
             if (kind == "bparam")
-                throw InputError(at(path, 1) + "a 'bparam' file (saved values of another .brdf) is not supported: "
-                                               "load that .brdf and give the values with --param");
+                throw InputError(at(path, 1) +
+                                 "a 'bparam' file (saved values of another .brdf) is not supported: "
+                                 "load that .brdf and give the values with --param");
             if (kind != "analytic")
                 throw InputError(at(path, 1) + "not an analytic .brdf file: the first line must be 'analytic' (got '" +
                                  trim(line).substr(0, 40) + "')");
@@ -217,10 +219,10 @@ BrdfFile parse(const std::string& text, const std::string& path) {
                 if (name == "parameters") f.parametersLine = lineNo;
                 else if (name == "shader") f.shaderLine = lineNo + 1;
                 else if (name == "isFunc")
-                    f.notes.push_back(at(path, lineNo) + "isFunc section ignored (BRDF Explorer's importance "
-                                                         "sampling for image-based light; hilite evaluates BRDF() directly)");
-                else
-                    f.notes.push_back(at(path, lineNo) + "unknown section '" + name + "' ignored");
+                    f.notes.push_back(at(path, lineNo) +
+                                      "isFunc section ignored (BRDF Explorer's importance "
+                                      "sampling for image-based light; hilite evaluates BRDF() directly)");
+                else f.notes.push_back(at(path, lineNo) + "unknown section '" + name + "' ignored");
             } else {
                 if (open.name.empty())
                     throw InputError(at(path, lineNo) + "::end " + name + " without ::begin " + name);
@@ -269,9 +271,7 @@ BrdfFile parse(const std::string& text, const std::string& path) {
     return f;
 }
 
-BrdfFile load(const std::string& path) {
-    return parse(readInputFile(path, "--brdf"), path);
-}
+BrdfFile load(const std::string& path) { return parse(readInputFile(path, "--brdf"), path); }
 
 void assign(BrdfFile& file, const std::string& assignments) {
     // Group the comma-separated tokens: one holding '=' starts an assignment, the others extend its value.

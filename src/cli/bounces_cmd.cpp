@@ -50,9 +50,10 @@ void printStudy(const experiments::BounceStudy& s, bool exits) {
     std::printf("  colour of orders >= 2: C* traced %.2f, Smith %.2f, Kulla-Conty F_ms %.2f\n", s.tracedMultiple.chroma,
                 s.walkMultiple.chroma, s.kcMultiple.chroma);
     const dvec3 kc = s.kcAlbedo;
-    std::printf("  albedo with F (linear sRGB): traced %.4f %.4f %.4f, Kulla-Conty %.4f %.4f %.4f, single %.4f %.4f %.4f\n",
-                t.reflectedRgb[0].value, t.reflectedRgb[1].value, t.reflectedRgb[2].value, kc.x, kc.y, kc.z,
-                s.singleAlbedo.x, s.singleAlbedo.y, s.singleAlbedo.z);
+    std::printf(
+        "  albedo with F (linear sRGB): traced %.4f %.4f %.4f, Kulla-Conty %.4f %.4f %.4f, single %.4f %.4f %.4f\n",
+        t.reflectedRgb[0].value, t.reflectedRgb[1].value, t.reflectedRgb[2].value, kc.x, kc.y, kc.z, s.singleAlbedo.x,
+        s.singleAlbedo.y, s.singleAlbedo.z);
     std::printf("  albedo Y: traced %s, Smith %s; stuck paths %.5f, back hits %ld\n", pm(t.reflectedY).c_str(),
                 pm(w.reflectedY).c_str(), t.stuck.value, t.backHits);
     if (!exits) return;
@@ -61,7 +62,9 @@ void printStudy(const experiments::BounceStudy& s, bool exits) {
     for (size_t b = 0; b < t.firstExitShare.size(); ++b) {
         char bin[32];
         if (b == 0) std::snprintf(bin, sizeof bin, "< 0 (down)");
-        else std::snprintf(bin, sizeof bin, "%.1f-%.1f", double(b - 1) / (micro::kExitBins - 1), double(b) / (micro::kExitBins - 1));
+        else
+            std::snprintf(bin, sizeof bin, "%.1f-%.1f", double(b - 1) / (micro::kExitBins - 1),
+                          double(b) / (micro::kExitBins - 1));
         std::printf("  %-12s %-9.4f %-9.4f %-9.4f %-9.4f\n", bin, t.firstExitShare[b], t.firstExitEscape[b],
                     w.firstExitShare[b], w.firstExitEscape[b]);
     }
@@ -75,7 +78,8 @@ int runBounces(BounceFlags& f) {
     const scene::Values values = commandValues(f.scene);
     const scene::Resolved r = experiments::resolveBounceScene(values);  // every check before the first path
     if (!f.json)
-        std::cout << "# " << r.scene.brdf << "\n# " << f.settings << ", field seed " << values.text("bump_seed") << "\n";
+        std::cout << "# " << r.scene.brdf << "\n# " << f.settings << ", field seed " << values.text("bump_seed")
+                  << "\n";
     for (const auto& s : experiments::studyBounces(values, f.settings)) {
         if (f.json) {
             std::cout << experiments::bounceRow(s).dump() << "\n" << std::flush;
@@ -90,13 +94,15 @@ int runBounces(BounceFlags& f) {
 }  // namespace
 
 std::pair<CLI::App*, Action> addBrdfBounces(CLI::App& app) {
-    CLI::App* sub = app.add_subcommand("bounces", "light per bounce order: traced on a Beckmann height field, walked "
-                                                  "on Smith's microsurface, beside Kulla-Conty (CPU)");
+    CLI::App* sub = app.add_subcommand("bounces",
+                                       "light per bounce order: traced on a Beckmann height field, walked "
+                                       "on Smith's microsurface, beside Kulla-Conty (CPU)");
     auto f = std::make_shared<BounceFlags>();
     f->scene.defaults["incidence"] = "0,30,60,75";
     f->scene.defaults["model"] = "beckmann";
     addParamFlags(*sub, f->scene, [](const scene::Param& p) {
-        for (const char* name : {"model", "roughness", "fresnel", "material", "eta", "k", "f0", "incidence", "bump_seed"})
+        for (const char* name :
+             {"model", "roughness", "fresnel", "material", "eta", "k", "f0", "incidence", "bump_seed"})
             if (p.name == name) return true;
         return false;
     });
@@ -108,13 +114,15 @@ std::pair<CLI::App*, Action> addBrdfBounces(CLI::App& app) {
         ->capture_default_str();
     sub->add_option("--bumps-per-tile", f->settings.bumpsPerTile, "bump periods across the tile (texels / 8 at most)")
         ->capture_default_str();
-    sub->add_option("--surface", f->surface, "hermite (C1, normals the gradient of the surface hit) | bilinear "
-                                             "(diagnostic: the render's heights and slopes)")
+    sub->add_option("--surface", f->surface,
+                    "hermite (C1, normals the gradient of the surface hit) | bilinear "
+                    "(diagnostic: the render's heights and slopes)")
         ->capture_default_str();
     sub->add_flag("--exits", f->exits, "also where the first reflection goes, and how much of it leaves at once");
     sub->add_flag("--json", f->json, "one JSON object per incidence instead of the table");
-    sub->footer("F = 1 energies per order, the colour (CIELAB C*, D65) of each order's light with the scene's Fresnel, "
-                "and the albedo against --multiscatter kulla-conty. Method and measured numbers: docs/bounces.md.");
+    sub->footer(
+        "F = 1 energies per order, the colour (CIELAB C*, D65) of each order's light with the scene's Fresnel, "
+        "and the albedo against --multiscatter kulla-conty. Method and measured numbers: docs/bounces.md.");
     return {sub, [f] { return runBounces(*f); }};
 }
 

@@ -4,16 +4,16 @@
 // .binary file (brdf/merl.hpp). A table by default; with --json one JSON object per line.
 
 #include "brdf/bihemispherical.hpp"
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/strip.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/error.hpp"
 #include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>
@@ -47,7 +47,8 @@ std::vector<double> parseList(const std::string& flag, const std::string& text, 
     };
     auto checkRange = [&](const std::string&, double v, double a, double b) {
         if (!std::isfinite(v) || v < a || v > b)
-            throw InputError(flag + ": must be a finite number in [" + fmt(a) + ", " + fmt(b) + "] (got " + fmt(v) + ")");
+            throw InputError(flag + ": must be a finite number in [" + fmt(a) + ", " + fmt(b) + "] (got " + fmt(v) +
+                             ")");
         return v;
     };
     std::vector<std::string> parts;
@@ -158,23 +159,26 @@ int runNormalization(const BrdfFlags& f) {
     const std::string modelName = given.text("model");
     auto model = brdf::parseModel(modelName);
     if (!model || !brdf::isMicrofacet(*model))
-        throw InputError(given.where("model") + ": normalization needs an NDF: blinn, gaussian, beckmann, ggx, "
-                                                "tabulated (got '" + modelName + "')");
+        throw InputError(given.where("model") +
+                         ": normalization needs an NDF: blinn, gaussian, beckmann, ggx, "
+                         "tabulated (got '" +
+                         modelName + "')");
     if (*model == brdf::Model::Tabulated) {  // the table, normalized when read, and the factor applied
         const brdf::Params p = resolveBrdf(f).scene.brdf;
         const double integral = brdf::ndfIntegral(p);
-        nlohmann::ordered_json j{{"ndf_table", p.ndfTable->file}, {"normalization", p.ndfTable->normalization},
-                                 {"integral", integral}};
-        if (f.json)
-            std::cout << j.dump() << "\n";
+        nlohmann::ordered_json j{
+            {"ndf_table", p.ndfTable->file}, {"normalization", p.ndfTable->normalization}, {"integral", integral}};
+        if (f.json) std::cout << j.dump() << "\n";
         else
             std::cout << "# int D(h) (n.h) dw_h, model=tabulated " << p.ndfTable->file << ": the file's D x "
-                      << std::setprecision(10) << p.ndfTable->normalization << "\n" << std::setw(12) << integral << "\n";
+                      << std::setprecision(10) << p.ndfTable->normalization << "\n"
+                      << std::setw(12) << integral << "\n";
         return 0;
     }
     const bool exponent = brdf::usesExponent(*model);
-    const auto values = exponent ? parseList("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent)
-                                 : parseList("--roughness", f.roughness, brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
+    const auto values = exponent
+                            ? parseList("--exponent", f.exponent, brdf::kMinExponent, brdf::kMaxExponent)
+                            : parseList("--roughness", f.roughness, brdf::kMinIntegrableRoughness, brdf::kMaxRoughness);
     if (!f.json)
         std::cout << "# int D(h) (n.h) dw_h, model=" << modelName << "\n#    roughness    exponent    integral\n";
     for (double v : values) {
@@ -184,8 +188,7 @@ int runNormalization(const BrdfFlags& f) {
         const double integral = brdf::ndfIntegral(p);
         nlohmann::ordered_json j{{"roughness", nullptr}, {"exponent", nullptr}, {"integral", integral}};
         j[exponent ? "exponent" : "roughness"] = v;
-        if (f.json)
-            std::cout << j.dump() << "\n";
+        if (f.json) std::cout << j.dump() << "\n";
         else
             std::cout << (exponent ? std::string(12, ' ') + rowFormat(v) : rowFormat(v) + std::string(12, ' '))
                       << std::setw(12) << std::setprecision(10) << integral << "\n";
@@ -210,15 +213,16 @@ int runTabulate(const BrdfFlags& f) {
     const scene::Values given = commandValues(f.scene);
     const brdf::Params p = resolveBrdf(f).scene.brdf;
     if (p.anisotropic())
-        throw InputError(given.where("roughness_y") + ": a MERL table is isotropic (90 x 90 x 180 over theta_h, "
-                                                      "theta_d, phi_d); brdf tabulate takes isotropic models only");
+        throw InputError(given.where("roughness_y") +
+                         ": a MERL table is isotropic (90 x 90 x 180 over theta_h, "
+                         "theta_d, phi_d); brdf tabulate takes isotropic models only");
     if (f.png.empty()) throw InputError("-o: give the MERL .binary file to write");
     io::checkWritable(f.png, "-o");
     const brdf::merl::MeasuredBrdf table = brdf::merl::tabulate(p);
     io::writeFileAtomic(f.png, brdf::merl::encode(table));
     std::cout << "wrote " << f.png << ": MERL table " << brdf::merl::kThetaHBins << " x " << brdf::merl::kThetaDBins
-              << " x " << brdf::merl::kPhiDBins << " (theta_h, theta_d, phi_d) at the bin centres, "
-              << table.noData << " bins below the horizon stored as no data: " << p << "\n";
+              << " x " << brdf::merl::kPhiDBins << " (theta_h, theta_d, phi_d) at the bin centres, " << table.noData
+              << " bins below the horizon stored as no data: " << p << "\n";
     return 0;
 }
 
@@ -277,11 +281,13 @@ Action addBrdf(CLI::App& app) {
     strip->add_flag("--spectral", fs->spectral, kSpectralHelp);
     strip->add_option("-o,--output", fs->png, "PNG output (sRGB-encoded linear F)");
 
-    CLI::App* tabulate = app.add_subcommand("tabulate", "a built-in isotropic model as a MERL .binary table (CPU, double)");
+    CLI::App* tabulate =
+        app.add_subcommand("tabulate", "a built-in isotropic model as a MERL .binary table (CPU, double)");
     auto ft = subcommandFlags(*tabulate, "", "", brdfParam);
     tabulate->add_option("-o,--output", ft->png, "MERL .binary output (34,992,012 bytes)");
-    tabulate->footer("brdf::evaluate (lobe with F and G, diffuse) at every bin centre; bins whose centre puts a "
-                     "direction below the horizon hold -1 (no data).");
+    tabulate->footer(
+        "brdf::evaluate (lobe with F and G, diffuse) at every bin centre; bins whose centre puts a "
+        "direction below the horizon hold -1 (no data).");
 
     const auto [bounces, runBounces] = addBrdfBounces(app);
 

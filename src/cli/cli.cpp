@@ -28,9 +28,10 @@ int finishStdout(int code) {
 }  // namespace
 
 int run(int argc, char** argv) {
-    CLI::App app{"hilite: the highlight analyzer. Renders a plane under a distant light offscreen (OpenGL via "
-                 "OSMesa or EGL) and measures the specular highlight's shape against the angle of incidence.",
-                 "hilite"};
+    CLI::App app{
+        "hilite: the highlight analyzer. Renders a plane under a distant light offscreen (OpenGL via "
+        "OSMesa or EGL) and measures the specular highlight's shape against the angle of incidence.",
+        "hilite"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "hilite 0.1.0");
     // A flag given twice: the last one wins.
@@ -42,9 +43,12 @@ int run(int argc, char** argv) {
     };
     add("render", "render the plane to PNG / PFM (measurement or photo view)", &addRender);
     add("measure", "measure the highlight: ellipse, aspect, eccentricity, per incidence angle", &addMeasure);
-    add("brdf", "the reflectance terms' physics: albedo, fresnel, normalization (tables / JSON), strip (PNG), tabulate (MERL)", &addBrdf);
+    add("brdf",
+        "the reflectance terms' physics: albedo, fresnel, normalization (tables / JSON), strip (PNG), tabulate (MERL)",
+        &addBrdf);
     add("explain", "print the resolved scene, its active effects and the GLSL it compiles", &addExplain);
-    add("fit", "fit analytic models (phong, blinn, beckmann, ggx, ...) to a measured or given highlight and rank them", &addFit);
+    add("fit", "fit analytic models (phong, blinn, beckmann, ggx, ...) to a measured or given highlight and rank them",
+        &addFit);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
     try {

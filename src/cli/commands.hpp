@@ -12,8 +12,9 @@ using Action = std::function<int()>;
 
 /// A validator refusing an empty value (`-o ''`, `--scene ''`): an empty name never means "the default".
 inline CLI::Validator nonEmpty() {
-    return CLI::Validator([](std::string& s) { return s.empty() ? std::string("empty value (give a name)") : std::string(); },
-                          "NONEMPTY");
+    return CLI::Validator(
+        [](std::string& s) { return s.empty() ? std::string("empty value (give a name)") : std::string(); },
+        "NONEMPTY");
 }
 
 Action addRender(CLI::App& app);

@@ -4,10 +4,10 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
 #include "gl/program.hpp"
+#include "hilite/core/error.hpp"
 #include "render/renderer.hpp"
 #include "render/shader_source.hpp"
 

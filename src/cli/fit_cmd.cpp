@@ -3,8 +3,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
+#include "hilite/core/error.hpp"
 #include "hilite/experiments/fit.hpp"
 #include "io/image_io.hpp"
 
@@ -31,7 +31,8 @@ std::vector<double> numbers(const std::string& flag, const std::string& text) {
     std::vector<double> out;
     for (const std::string& item : split(text, ',')) {
         const auto v = parseNumber(item);
-        if (!v) throw InputError(flag + ": '" + item + "' is not a number (give a comma-separated list, e.g. 0.1,0.5,0.9)");
+        if (!v)
+            throw InputError(flag + ": '" + item + "' is not a number (give a comma-separated list, e.g. 0.1,0.5,0.9)");
         out.push_back(*v);
     }
     return out;
@@ -48,16 +49,18 @@ std::string paramsText(const nlohmann::ordered_json& p) {
 }
 
 void printTable(const experiments::FitResult& r) {
-    std::printf("target: %s; %zu incidences x %zu thresholds (", r.target.c_str(), r.angles.size(), r.thresholds.size());
+    std::printf("target: %s; %zu incidences x %zu thresholds (", r.target.c_str(), r.angles.size(),
+                r.thresholds.size());
     for (size_t j = 0; j < r.thresholds.size(); ++j)
         std::printf("%s%g weight %g", j ? ", " : "", r.thresholds[j], r.weights[j]);
     std::printf(")\nresidual: weighted RMS of ln(fit / target) of the semi-axes\n\n");
-    std::printf("%-4s %-14s %-40s %10s %6s %8s  %s\n", "rank", "model", "params", "residual", "evals", "time_s", "stop");
+    std::printf("%-4s %-14s %-40s %10s %6s %8s  %s\n", "rank", "model", "params", "residual", "evals", "time_s",
+                "stop");
     for (int rank = 1; rank <= int(r.fits.size()); ++rank)
         for (const auto& m : r.fits)
             if (m.rank == rank)
-                std::printf("%-4d %-14s %-40s %10.3e %6d %8.2f  %s\n", m.rank, m.model.c_str(), paramsText(m.params).c_str(),
-                            m.residual, m.evaluations, m.ms / 1000.0, m.stop.c_str());
+                std::printf("%-4d %-14s %-40s %10.3e %6d %8.2f  %s\n", m.rank, m.model.c_str(),
+                            paramsText(m.params).c_str(), m.residual, m.evaluations, m.ms / 1000.0, m.stop.c_str());
     std::printf("\naspect at threshold %g (fit - target per model):\n%6s %9s", r.aspectThreshold, "theta", "target");
     for (const auto& m : r.fits) std::printf(" %14s", m.model.c_str());
     std::printf("\n");
@@ -84,8 +87,9 @@ int runFit(FitFlags& f) {
         if (ext == ".binary") values.set("measured", f.target, "--target");
         else if (ext == ".brdf") values.set("brdf", f.target, "--target");
         else
-            throw InputError("--target: '" + f.target + "' must be a MERL .binary table or a BRDF Explorer .brdf file "
-                                                         "(or give the target as --model ...)");
+            throw InputError("--target: '" + f.target +
+                             "' must be a MERL .binary table or a BRDF Explorer .brdf file "
+                             "(or give the target as --model ...)");
     }
     f.options.models = split(f.models, ',');
     f.options.thresholds = numbers("--thresholds", f.thresholds);
@@ -102,13 +106,15 @@ int runFit(FitFlags& f) {
     if (!f.output.empty()) {
         io::makeOutputDir(f.output, "-o");
         std::string why;
-        if (!experiments::writeFitFolder(f.output, r, why)) std::cerr << "hilite: warning: fit plots not made: " << why << "\n";
+        if (!experiments::writeFitFolder(f.output, r, why))
+            std::cerr << "hilite: warning: fit plots not made: " << why << "\n";
     }
     if (f.json) {
         for (const auto& m : r.fits) std::cout << experiments::toJson(r, m).dump() << "\n";
     } else {
         printTable(r);
-        if (!f.output.empty()) std::printf("\nwrote %s/fit.json, fit.csv, fit_aspect.png, fit_residual.png\n", f.output.c_str());
+        if (!f.output.empty())
+            std::printf("\nwrote %s/fit.json, fit.csv, fit_aspect.png, fit_residual.png\n", f.output.c_str());
     }
     return 0;
 }
@@ -122,25 +128,36 @@ Action addFit(CLI::App& app) {
     addParamFlags(app, f->scene);
     const char* g = "Fit";
     app.add_option("--target", f->target,
-                   "what to fit: a MERL .binary table or a .brdf file (else the material flags, e.g. --model ggx --roughness 0.1)")
+                   "what to fit: a MERL .binary table or a .brdf file (else the material flags, e.g. --model ggx "
+                   "--roughness 0.1)")
         ->group(g);
-    app.add_option("--models", f->models, "models to fit, comma-separated: phong, phong-classic, retro, blinn, gaussian, beckmann, ggx")
-        ->capture_default_str()->group(g);
+    app.add_option("--models", f->models,
+                   "models to fit, comma-separated: phong, phong-classic, retro, blinn, gaussian, beckmann, ggx")
+        ->capture_default_str()
+        ->group(g);
     app.add_option("--thresholds", f->thresholds, "thresholds of the measured regions, each in (0, 1)")
-        ->capture_default_str()->group(g);
+        ->capture_default_str()
+        ->group(g);
     app.add_option("--weights", f->weights, "a weight >= 0 per threshold (default 1 each)")->group(g);
     app.add_flag("--fit-anisotropy", f->options.anisotropy, "fit roughness_y too (beckmann, ggx)")->group(g);
     app.add_flag("--fit-f0", f->options.f0, "fit a Schlick F0 against the peak (microfacet models)")->group(g);
-    app.add_option("--fit-geometry", f->options.geometry, "the fitted models' --geometry (default: the registry's, implicit)")
-        ->check(CLI::IsMember({"none", "implicit", "cook-torrance", "smith-separable", "smith"}))->group(g);
-    app.add_option("--fit-fresnel", f->options.fresnel, "the fitted models' --fresnel (default none; schlick with --fit-f0)")
-        ->check(CLI::IsMember({"none", "schlick"}))->group(g);
+    app.add_option("--fit-geometry", f->options.geometry,
+                   "the fitted models' --geometry (default: the registry's, implicit)")
+        ->check(CLI::IsMember({"none", "implicit", "cook-torrance", "smith-separable", "smith"}))
+        ->group(g);
+    app.add_option("--fit-fresnel", f->options.fresnel,
+                   "the fitted models' --fresnel (default none; schlick with --fit-f0)")
+        ->check(CLI::IsMember({"none", "schlick"}))
+        ->group(g);
     app.add_option("--max-evaluations", f->options.maxEvaluations, "per model: measured sweeps at most")
-        ->capture_default_str()->check(CLI::Range(1, 10000))->group(g);
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10000))
+        ->group(g);
     app.add_option("-o,--output", f->output, "folder for fit.json, fit.csv and the plots")->check(nonEmpty())->group(g);
     app.add_flag("--json", f->json, "one JSON object per model instead of the table")->group("Output");
-    app.footer("Example: hilite fit --target gold-metallic-paint.binary --models phong,blinn,beckmann,ggx -o results/fit\n"
-               "         hilite fit --model ggx --roughness 0.1 --models phong,ggx --json");
+    app.footer(
+        "Example: hilite fit --target gold-metallic-paint.binary --models phong,blinn,beckmann,ggx -o results/fit\n"
+        "         hilite fit --model ggx --roughness 0.1 --models phong,ggx --json");
     return [f] { return runFit(*f); };
 }
 

@@ -2,8 +2,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
-#include "hilite/core/error.hpp"
 #include "experiments/results.hpp"
+#include "hilite/core/error.hpp"
 #include "hilite/measurement/session.hpp"
 
 #include <nlohmann/json.hpp>
@@ -46,13 +46,14 @@ void printTableRow(const nlohmann::json& j) {
     };
     if (j.value("framed_about", std::string("mirror direction")) != "mirror direction") {
         char about[96];
-        std::snprintf(about, sizeof about, "about the peak, %.4g deg from the mirror direction", num("peak_offset_deg"));
+        std::snprintf(about, sizeof about, "about the peak, %.4g deg from the mirror direction",
+                      num("peak_offset_deg"));
         flags += (flags.empty() ? "" : " ") + std::string("(") + about + ")";
     }
     std::printf("%-9s %s %s %s %s %s %s %s %s %s %s  %s\n", j["model"].get<std::string>().c_str(),
                 cell(num("incidence_deg"), "%*.2f", 6).c_str(), cell(num("aspect"), "%*.5f", 8).c_str(),
-                cell(num("eccentricity"), "%*.5f", 8).c_str(), deg("major_deg", 9).c_str(),
-                deg("minor_deg", 9).c_str(), cell(num("orientation_deg"), "%*.2f", 7).c_str(), deg("centroid_u_deg", 8).c_str(),
+                cell(num("eccentricity"), "%*.5f", 8).c_str(), deg("major_deg", 9).c_str(), deg("minor_deg", 9).c_str(),
+                cell(num("orientation_deg"), "%*.2f", 7).c_str(), deg("centroid_u_deg", 8).c_str(),
                 deg("centroid_v_deg", 8).c_str(), deg("fwhm_u_deg", 8).c_str(), deg("fwhm_v_deg", 8).c_str(),
                 flags.c_str());
     if (j.contains("parts")) {  // a region in several parts: the line above is all of them, these each one
@@ -69,9 +70,10 @@ void printTableRow(const nlohmann::json& j) {
         auto err = [&](const char* k) {
             return j["error_estimate"][k].is_null() ? NAN : j["error_estimate"][k].get<double>();
         };
-        std::printf("  error estimate (resolution convergence, no CPU twin for .brdf): aspect %.1e, major %.1e, "
-                    "minor %.1e deg\n",
-                    err("aspect"), err("major_deg"), err("minor_deg"));
+        std::printf(
+            "  error estimate (resolution convergence, no CPU twin for .brdf): aspect %.1e, major %.1e, "
+            "minor %.1e deg\n",
+            err("aspect"), err("major_deg"), err("minor_deg"));
     }
     if (j.contains("framing_note")) std::printf("  note: %s\n", j["framing_note"].get<std::string>().c_str());
 }

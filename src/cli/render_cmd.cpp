@@ -41,7 +41,8 @@ int runRender(const RenderFlags& f) {
     const scene::Resolved r = scene::resolve(commandValues(f.scene), scene::Purpose::Render);
     const render::Scene& scene = r.scene;
     if (r.angles.size() > 1)
-        throw InputError(r.values.where("incidence") + ": render takes one angle (got '" + r.values.text("incidence") + "')");
+        throw InputError(r.values.where("incidence") + ": render takes one angle (got '" + r.values.text("incidence") +
+                         "')");
     const int width = r.setup.width, height = r.setup.height;
     const PinholeCamera camera = scene::viewCamera(r, r.view, width, height);
     if (f.png.empty() && f.pfm.empty()) throw InputError("-o/--float: give at least one output file");
@@ -61,7 +62,8 @@ int runRender(const RenderFlags& f) {
     size_t nonFinite = 0;
     for (float v : img.data) nonFinite += !std::isfinite(v);
     if (nonFinite)
-        throw InputError("render: " + std::to_string(nonFinite) + " pixel values are NaN or Inf (the BRDF is not finite "
+        throw InputError("render: " + std::to_string(nonFinite) +
+                         " pixel values are NaN or Inf (the BRDF is not finite "
                          "there, e.g. a lobe infinite at its peak); nothing written");
     const double peak = peakOf(img);
     if (!f.png.empty()) {
@@ -71,9 +73,9 @@ int runRender(const RenderFlags& f) {
         io::writePng(f.png, img, e);
     }
     if (!f.pfm.empty()) io::writePfm(f.pfm, img);
-    std::cout << "rendered " << width << "x" << height << " " << (r.view == scene::View::Photo ? "photo" : "measure") << " view: " << scene
-              << " peak=" << peak << " [" << context.info().renderer << ", " << gl::toString(context.info().backend)
-              << "]\n";
+    std::cout << "rendered " << width << "x" << height << " " << (r.view == scene::View::Photo ? "photo" : "measure")
+              << " view: " << scene << " peak=" << peak << " [" << context.info().renderer << ", "
+              << gl::toString(context.info().backend) << "]\n";
     return 0;
 }
 

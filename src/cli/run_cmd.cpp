@@ -43,8 +43,8 @@ int runExperiment(const RunFlags& f) {
         return 0;
     }
     if (!s.finalized) {
-        std::cout << "shard " << o.shardK << "/" << o.shardN << ": " << s.measured << " rows in " << s.seconds << " s -> "
-                  << s.dir << "/results.jsonl (join the shards with hilite merge)\n";
+        std::cout << "shard " << o.shardK << "/" << o.shardN << ": " << s.measured << " rows in " << s.seconds
+                  << " s -> " << s.dir << "/results.jsonl (join the shards with hilite merge)\n";
         return 0;
     }
     std::cout << s.name << ": " << s.configurations << " configurations (" << s.measured << " measured now) in "

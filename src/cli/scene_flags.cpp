@@ -59,13 +59,15 @@ void addParamFlags(CLI::App& app, SceneOptions& o, const std::function<bool(cons
         scene::Values* values = &o.given;
         CLI::Option* opt = nullptr;
         if (p.kind == scene::Kind::Switch) {
-            opt = app.add_flag_callback(p.flag(), [values, name] { values->set(name, "true"); }, helpText(p, def));
+            opt = app.add_flag_callback(
+                p.flag(), [values, name] { values->set(name, "true"); }, helpText(p, def));
         } else if (p.kind == scene::Kind::List) {
             opt = app.add_option_function<std::vector<std::string>>(
-                       p.flag(), [values, name](const std::vector<std::string>& all) {
-                           for (const auto& v : all) values->set(name, v);
-                       },
-                       helpText(p, def))
+                         p.flag(),
+                         [values, name](const std::vector<std::string>& all) {
+                             for (const auto& v : all) values->set(name, v);
+                         },
+                         helpText(p, def))
                       ->expected(1)
                       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
         } else {

@@ -55,8 +55,8 @@ PinholeCamera PinholeCamera::measurementFrom(const MirrorChart& chart, const dve
     return lookAt(eye, eye - center, chart.eu(), fovDeg, width, height);
 }
 
-PinholeCamera PinholeCamera::photo(double elevationDeg, double azimuthDeg, double distance, double fovDeg,
-                                   int width, int height) {
+PinholeCamera PinholeCamera::photo(double elevationDeg, double azimuthDeg, double distance, double fovDeg, int width,
+                                   int height) {
     const dvec3 dir = sphericalDirectionDeg(90.0 - elevationDeg, azimuthDeg);
     return lookAt(distance * dir, dvec3(0.0), dvec3(0, 0, 1), fovDeg, width, height);
 }

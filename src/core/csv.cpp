@@ -1,7 +1,7 @@
 #include "core/csv.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
+#include "hilite/core/error.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -35,7 +35,8 @@ CsvNumbers parseCsvNumbers(const std::string& text, const std::string& name, siz
         ++lineNo;
         if (!line.empty() && line.back() == '\r') line.pop_back();
         const auto hash = line.find('#');
-        if (hash != std::string::npos && line.find_first_not_of(" \t") == hash) t.source += line.substr(hash + 1) + "\n";
+        if (hash != std::string::npos && line.find_first_not_of(" \t") == hash)
+            t.source += line.substr(hash + 1) + "\n";
         line = line.substr(0, hash);
         if (line.find_first_not_of(" \t") == std::string::npos) continue;
         const auto fields = fieldsOf(line);

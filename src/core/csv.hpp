@@ -10,10 +10,10 @@
 namespace hilite {
 
 struct CsvNumbers {
-    std::string source;                    ///< the whole-line comments, '#' removed, one per line
-    std::string header;                    ///< the header row ("" when the table has none)
-    std::vector<std::vector<double>> rows; ///< each of `columns` numbers
-    std::vector<int> lines;                ///< each row's line number in the text (1-based)
+    std::string source;                     ///< the whole-line comments, '#' removed, one per line
+    std::string header;                     ///< the header row ("" when the table has none)
+    std::vector<std::vector<double>> rows;  ///< each of `columns` numbers
+    std::vector<int> lines;                 ///< each row's line number in the text (1-based)
 };
 
 /// Throws InputError "name:line: expected N numbers per row (got '...')" for a malformed row; `rowName`

@@ -21,8 +21,7 @@ std::string parent(const std::string& path) {
 /// The binary a function of this file is linked into, by its address (dladdr), made absolute.
 std::string objectPath() {
     Dl_info info{};
-    if (dladdr(reinterpret_cast<void*>(&objectDirectory), &info) == 0 || !info.dli_fname || !*info.dli_fname)
-        return "";
+    if (dladdr(reinterpret_cast<void*>(&objectDirectory), &info) == 0 || !info.dli_fname || !*info.dli_fname) return "";
     std::string path = info.dli_fname;
     if (char* real = realpath(path.c_str(), nullptr)) {  // the main program reports argv[0]-like names
         path = real;

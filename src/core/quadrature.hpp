@@ -62,9 +62,9 @@ inline double quadratureNorm(const dvec3& x) { return std::max({std::abs(x.x), s
 template <class T>
 struct QuadratureResult {
     T value{0.0};
-    double error = 0;      ///< estimated absolute error (norm of the components)
+    double error = 0;  ///< estimated absolute error (norm of the components)
     int evaluations = 0;
-    bool converged = true; ///< false: the panel budget ran out first
+    bool converged = true;  ///< false: the panel budget ran out first
 };
 
 /// One Gauss-Kronrod 7/15 panel: the Kronrod estimate and |K - G|.

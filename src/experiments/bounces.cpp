@@ -1,14 +1,14 @@
 #include "hilite/experiments/bounces.hpp"
 
-#include "hilite/brdf/colour.hpp"
 #include "brdf/energy.hpp"
 #include "brdf/integrate.hpp"
+#include "core/text.hpp"
+#include "hilite/brdf/colour.hpp"
 #include "hilite/core/error.hpp"
 #include "hilite/core/image.hpp"
-#include "core/text.hpp"
+#include "hilite/measurement/row.hpp"
 #include "io/image_io.hpp"
 #include "io/label.hpp"
-#include "hilite/measurement/row.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -34,30 +34,35 @@ void checkBounceSettings(const BounceSettings& s, bool asFlags) {
     if (!pow2) throw InputError(where + "texels: a power of two in [64, 4096] (got " + std::to_string(s.texels) + ")");
     // At least 8 texels a bump period: the field's own rule (micro/bump_field.hpp).
     if (s.bumpsPerTile < 1 || s.texels / s.bumpsPerTile < 8)
-        throw InputError(bumps + ": an integer in [1, texels / 8] (got " + std::to_string(s.bumpsPerTile) +
-                         " for " + std::to_string(s.texels) + " texels)");
+        throw InputError(bumps + ": an integer in [1, texels / 8] (got " + std::to_string(s.bumpsPerTile) + " for " +
+                         std::to_string(s.texels) + " texels)");
 }
 
 scene::Resolved resolveBounceScene(scene::Values values) {
     // The study compares with Smith's masking and reflects on the surface alone: nothing else may be named.
     if (values.given("geometry") && values.text("geometry") != "smith")
-        throw InputError(values.where("geometry") + ": bounces are compared with Smith's G2: smith or leave it out (got '" +
+        throw InputError(values.where("geometry") +
+                         ": bounces are compared with Smith's G2: smith or leave it out (got '" +
                          values.text("geometry") + "')");
     for (const char* key : {"diffuse", "multiscatter"})
         if (values.given(key) && values.text(key) != "none")
-            throw InputError(values.where(key) + ": bounces trace the specular surface alone, and compute the "
-                                                 "kulla-conty albedo themselves: none or leave it out (got '" +
+            throw InputError(values.where(key) +
+                             ": bounces trace the specular surface alone, and compute the "
+                             "kulla-conty albedo themselves: none or leave it out (got '" +
                              values.text(key) + "')");
     values.set("geometry", "smith", "bounces");
     scene::Resolved r = scene::resolve(values, scene::Purpose::Brdf);
     const brdf::Params& p = r.scene.brdf;
     if (p.model != brdf::Model::Beckmann || p.measured)
-        throw InputError(values.where("model") + ": bounces are traced on a Gaussian height field, whose slopes are "
-                                                 "Beckmann's: beckmann (got '" + values.text("model") + "')");
-    if (p.anisotropic()) throw InputError(values.where("roughness_y") + ": the height fields are isotropic (leave it out)");
+        throw InputError(values.where("model") +
+                         ": bounces are traced on a Gaussian height field, whose slopes are "
+                         "Beckmann's: beckmann (got '" +
+                         values.text("model") + "')");
+    if (p.anisotropic())
+        throw InputError(values.where("roughness_y") + ": the height fields are isotropic (leave it out)");
     if (!(p.roughness >= kMinBounceRoughness && p.roughness <= kMaxBounceRoughness))
-        throw InputError(values.where("roughness") + ": bounces are traced for m in [" + fmt(kMinBounceRoughness) + ", " +
-                         fmt(kMaxBounceRoughness) + "] (got " + fmt(p.roughness) + ")");
+        throw InputError(values.where("roughness") + ": bounces are traced for m in [" + fmt(kMinBounceRoughness) +
+                         ", " + fmt(kMaxBounceRoughness) + "] (got " + fmt(p.roughness) + ")");
     for (double a : r.angles)
         if (!(a >= 0 && a < 90))
             throw InputError(values.where("incidence") + ": a light below the horizon reflects nothing: [0, 90) (got " +
@@ -187,7 +192,8 @@ std::vector<std::pair<std::string, nlohmann::json>> fields(const BounceStudy* s)
         add("traced_y" + orderName(k), c.y);
         for (int ch = 0; ch < 3; ++ch) add("traced_colour" + orderName(k) + "_" + rgb[ch], c.rgb[ch]);
     }
-    const brdf::Colour trM = s && tr.multiple.value > 0 ? s->tracedMultiple : noLight, wkM = s && wk.multiple.value > 0 ? s->walkMultiple : noLight, kcM = s ? s->kcMultiple : none;
+    const brdf::Colour trM = s && tr.multiple.value > 0 ? s->tracedMultiple : noLight,
+                       wkM = s && wk.multiple.value > 0 ? s->walkMultiple : noLight, kcM = s ? s->kcMultiple : none;
     add("traced_chroma_ms", trM.chroma);
     add("smith_chroma_ms", wkM.chroma);
     add("kc_chroma_ms", kcM.chroma);
@@ -257,19 +263,21 @@ void energyTable(const std::vector<nlohmann::json>& rows, std::ostringstream& md
           "2016), each +- one standard error over the batches. `E(mu)` is the single scattering brdf::albedo "
           "integrates (Smith G2, the table of --multiscatter kulla-conty), `1 - E` what the compensation returns "
           "(its albedo is exactly 1). `traced - KC`: the traced multiple scattering less 1 - E, in standard "
-          "errors.\n\n| material | m | theta_i | traced 1 | Smith 1 | E(mu) | traced 2 | Smith 2 | traced 3 | Smith 3 | "
+          "errors.\n\n| material | m | theta_i | traced 1 | Smith 1 | E(mu) | traced 2 | Smith 2 | traced 3 | Smith 3 "
+          "| "
           "traced >= 4 | Smith >= 4 | traced >= 2 | Smith >= 2 | KC 1 - E | traced - KC |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : rows) {
         const double ms = num(r, "traced_multiple"), err = num(r, "traced_multiple_err"), kc = num(r, "kc_multiple");
-        const double t4 = num(r, "traced_e4") + num(r, "traced_e5plus"), w4 = num(r, "smith_e4") + num(r, "smith_e5plus");
+        const double t4 = num(r, "traced_e4") + num(r, "traced_e5plus"),
+                     w4 = num(r, "smith_e4") + num(r, "smith_e5plus");
         md << "| " << sceneOf(r) << " | " << pm(num(r, "traced_e1"), num(r, "traced_e1_err")) << " | "
            << pm(num(r, "smith_e1"), num(r, "smith_e1_err")) << " | " << fixed(num(r, "smith_single"), 4) << " | "
-           << pm(num(r, "traced_e2"), num(r, "traced_e2_err")) << " | " << pm(num(r, "smith_e2"), num(r, "smith_e2_err"))
-           << " | " << fixed(num(r, "traced_e3"), 4) << " | " << fixed(num(r, "smith_e3"), 4) << " | " << fixed(t4, 4)
-           << " | " << fixed(w4, 4) << " | " << pm(ms, err) << " | " << pm(num(r, "smith_multiple"), num(r, "smith_multiple_err"))
-           << " | " << fixed(kc, 4) << " | " << std::showpos << fixed(ms - kc, 4) << std::noshowpos << " ("
-           << fixed((ms - kc) / err, 1) << " sigma) |\n";
+           << pm(num(r, "traced_e2"), num(r, "traced_e2_err")) << " | "
+           << pm(num(r, "smith_e2"), num(r, "smith_e2_err")) << " | " << fixed(num(r, "traced_e3"), 4) << " | "
+           << fixed(num(r, "smith_e3"), 4) << " | " << fixed(t4, 4) << " | " << fixed(w4, 4) << " | " << pm(ms, err)
+           << " | " << pm(num(r, "smith_multiple"), num(r, "smith_multiple_err")) << " | " << fixed(kc, 4) << " | "
+           << std::showpos << fixed(ms - kc, 4) << std::noshowpos << " (" << fixed((ms - kc) / err, 1) << " sigma) |\n";
     }
     md << "\n";
 }
@@ -279,7 +287,8 @@ void colourTable(const std::vector<nlohmann::json>& rows, std::ostringstream& md
           "F multiplied per wavelength at each bounce and integrated under D65 (CIE 1931 2-degree): CIELAB C* "
           "against the white (D65), xy its chromaticity (white 0.3127, 0.3290). `>= 2` pools the orders from the "
           "second; Kulla-Conty's colour of those orders is F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) in linear "
-          "sRGB. Errors: the spread of C* over the batches.\n\n| material | m | theta_i | C* 1 | C* 2 | C* 3 | C* 2 - C* 1 | "
+          "sRGB. Errors: the spread of C* over the batches.\n\n| material | m | theta_i | C* 1 | C* 2 | C* 3 | C* 2 - "
+          "C* 1 | "
           "xy 1 | xy 2 | C* >= 2 traced | Smith | KC F_ms | albedo Y traced | Smith | KC | single |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     int more = 0, counted = 0;
@@ -296,14 +305,15 @@ void colourTable(const std::vector<nlohmann::json>& rows, std::ostringstream& md
         md << "| " << sceneOf(r) << " | " << pm(c1, e1) << " | " << pm(c2, e2) << " | "
            << pm(num(r, "traced_chroma3"), num(r, "traced_chroma3_err")) << " | " << std::showpos << fixed(c2 - c1, 2)
            << std::noshowpos << " (" << fixed(sigma, 1) << " sigma) | " << fixed(num(r, "traced_x1"), 4) << ", "
-           << fixed(num(r, "traced_y1"), 4) << " | " << fixed(num(r, "traced_x2"), 4) << ", " << fixed(num(r, "traced_y2"), 4)
-           << " | " << fixed(num(r, "traced_chroma_ms"), 2) << " | " << fixed(num(r, "smith_chroma_ms"), 2) << " | "
-           << fixed(num(r, "kc_chroma_ms"), 2) << " | " << pm(num(r, "traced_albedo_y"), num(r, "traced_albedo_y_err"))
-           << " | " << fixed(num(r, "smith_albedo_y"), 4) << " | " << fixed(num(r, "kc_albedo_y"), 4) << " | "
+           << fixed(num(r, "traced_y1"), 4) << " | " << fixed(num(r, "traced_x2"), 4) << ", "
+           << fixed(num(r, "traced_y2"), 4) << " | " << fixed(num(r, "traced_chroma_ms"), 2) << " | "
+           << fixed(num(r, "smith_chroma_ms"), 2) << " | " << fixed(num(r, "kc_chroma_ms"), 2) << " | "
+           << pm(num(r, "traced_albedo_y"), num(r, "traced_albedo_y_err")) << " | "
+           << fixed(num(r, "smith_albedo_y"), 4) << " | " << fixed(num(r, "kc_albedo_y"), 4) << " | "
            << fixed(num(r, "single_albedo_y"), 4) << " |\n";
     }
-    md << "\nSecond-bounce light is more saturated than first-bounce light (C* 2 > C* 1) in " << more << " of " << counted
-       << " rows; the smallest margin is " << fixed(smallestSigma, 1) << " standard errors.\n\n";
+    md << "\nSecond-bounce light is more saturated than first-bounce light (C* 2 > C* 1) in " << more << " of "
+       << counted << " rows; the smallest margin is " << fixed(smallestSigma, 1) << " standard errors.\n\n";
 }
 
 void shareTable(const std::vector<nlohmann::json>& rows, std::ostringstream& md) {
@@ -315,8 +325,9 @@ void shareTable(const std::vector<nlohmann::json>& rows, std::ostringstream& md)
     for (const auto& r : rows) {
         const double surface = num(r, "traced_albedo_y");
         // Order 1's share of the reflected light: the luminance of order 1's reflectance times its energy.
-        const double first = num(r, "traced_e1") * (0.2126 * num(r, "traced_colour1_r") + 0.7152 * num(r, "traced_colour1_g") +
-                                                    0.0722 * num(r, "traced_colour1_b"));
+        const double first =
+            num(r, "traced_e1") * (0.2126 * num(r, "traced_colour1_r") + 0.7152 * num(r, "traced_colour1_g") +
+                                   0.0722 * num(r, "traced_colour1_b"));
         md << "| " << sceneOf(r) << " | " << pm(surface, num(r, "traced_albedo_y_err")) << " | "
            << fixed(num(r, "smith_albedo_y"), 4) << " | " << fixed(num(r, "kc_albedo_y"), 4) << " | "
            << fixed(num(r, "single_albedo_y"), 4) << " | " << fixed(first, 4) << " | " << fixed(surface - first, 4)
@@ -332,8 +343,8 @@ std::string bounceSection(const std::vector<nlohmann::json>& rows) {
     if (rows.empty()) return "";
     std::ostringstream md;
     const nlohmann::json& any = rows.front();
-    md << "## Light that bounces more than once\n\nPaths traced on an explicit Beckmann height field (" << num(any, "bounce_texels")
-       << "^2 texels, " << num(any, "bounce_bumps_per_tile") << " bumps a tile, surface `"
+    md << "## Light that bounces more than once\n\nPaths traced on an explicit Beckmann height field ("
+       << num(any, "bounce_texels") << "^2 texels, " << num(any, "bounce_bumps_per_tile") << " bumps a tile, surface `"
        << any.value("bounce_surface", std::string()) << "`, " << num(any, "bounce_paths")
        << " paths a row) and walked on Smith's microsurface; see docs/bounces.md for the method and what the "
           "differences mean.\n\n";
@@ -352,9 +363,11 @@ std::string bounceSection(const std::vector<nlohmann::json>& rows) {
 void writeBounceColours(const std::vector<nlohmann::json>& rows, const std::string& path) {
     // One row of patches per results row: orders 1, 2, 3, >= 2 traced, and Kulla-Conty's F_ms.
     const int patch = 48, gap = 4, scale = 1, th = io::textHeight(scale), label = 150, header = th + 6;
-    const std::vector<std::pair<std::string, std::string>> columns = {
-        {"1", "traced_colour1_"}, {"2", "traced_colour2_"}, {"3", "traced_colour3_"}, {">=2", "traced_colour_ms_"},
-        {"KC F_ms", "kc_colour_ms_"}};
+    const std::vector<std::pair<std::string, std::string>> columns = {{"1", "traced_colour1_"},
+                                                                      {"2", "traced_colour2_"},
+                                                                      {"3", "traced_colour3_"},
+                                                                      {">=2", "traced_colour_ms_"},
+                                                                      {"KC F_ms", "kc_colour_ms_"}};
     const int width = label + int(columns.size()) * (patch + gap), height = header + int(rows.size()) * (patch + gap);
     ImageF img(width, height, 3);
     auto top = [&](int yFromTop) { return height - 1 - yFromTop; };  // rows are stored bottom-up
@@ -364,7 +377,8 @@ void writeBounceColours(const std::vector<nlohmann::json>& rows, const std::stri
         const auto& r = rows[i];
         const int y0 = header + int(i) * (patch + gap);
         std::ostringstream name;
-        name << r.value("material", std::string("")) << " m " << num(r, "roughness") << ", " << num(r, "incidence_deg") << " deg";
+        name << r.value("material", std::string("")) << " m " << num(r, "roughness") << ", " << num(r, "incidence_deg")
+             << " deg";
         io::drawText(img, 2, y0 + patch / 2 - th / 2, name.str(), scale);
         for (size_t c = 0; c < columns.size(); ++c) {
             dvec3 rgb;

@@ -1,12 +1,12 @@
 #include "experiments/experiment.hpp"
 
-#include "core/install_paths.hpp"
 #include "brdf/materials.hpp"
-#include "hilite/core/error.hpp"
+#include "core/install_paths.hpp"
 #include "core/text.hpp"
-#include "io/image_io.hpp"
+#include "hilite/core/error.hpp"
 #include "hilite/measurement/row.hpp"
 #include "hilite/scene/scene_file.hpp"
+#include "io/image_io.hpp"
 
 #include "experiments/reports.hpp"
 
@@ -15,10 +15,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iostream>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -67,7 +67,8 @@ public:
             if (std::find(m_allowed.begin(), m_allowed.end(), key) != m_allowed.end()) continue;
             const std::string hint = didYouMean(key, m_allowed);
             throw InputError(line(file, v) + ": " + m_table + "." + key + ": unknown key" +
-                             (hint.empty() ? "" : ", did you mean '" + hint + "'?") + " (allowed: " + join(m_allowed) + ")");
+                             (hint.empty() ? "" : ", did you mean '" + hint + "'?") + " (allowed: " + join(m_allowed) +
+                             ")");
         }
     }
     const toml::node* node(const std::string& key) const { return m_t.get(key); }
@@ -122,7 +123,8 @@ public:
     std::string outputFile(const std::string& key, const std::string& fallback) const {
         const std::string name = string(key, fallback);
         const std::string why = outputNameError(name, kPictureExtension);
-        if (!why.empty()) fail(key, "'" + printable(name) + "': " + why + " (a file name in the output folder, e.g. plot.png)");
+        if (!why.empty())
+            fail(key, "'" + printable(name) + "': " + why + " (a file name in the output folder, e.g. plot.png)");
         return name;
     }
     const std::string& file() const { return m_file; }
@@ -185,7 +187,8 @@ scene::Values caseValues(const toml::table& t, const std::string& file, const st
             throw InputError(line(file, v) + ": " + what + "." + key + ": unknown key (allowed: " +
                              (special.size() ? "name, tags, reference and " : "") + sceneTables() + ")");
         // Key by key from the file's own nodes: a copied table would lose their lines (messages said "file:0").
-        for (const auto& [name, value] : *v.as_table()) scene::setKey(out, file, key + "." + std::string(name.str()), value);
+        for (const auto& [name, value] : *v.as_table())
+            scene::setKey(out, file, key + "." + std::string(name.str()), value);
     }
     return out;
 }
@@ -205,13 +208,15 @@ std::vector<SweepCase> parseCases(const toml::array& cases, const std::string& f
                              " needs name = \"...\" (a non-empty string)");
         sc.name = nameNode->as_string()->get();
         for (const auto& o : out)
-            if (o.name == sc.name) throw InputError(line(file, c) + ": sweep.cases.name: two cases of " + key + " named '" + sc.name + "'");
+            if (o.name == sc.name)
+                throw InputError(line(file, c) + ": sweep.cases.name: two cases of " + key + " named '" + sc.name +
+                                 "'");
         const std::string what = "sweep.cases";
         sc.tags = nlohmann::json::object();
         for (const char* k : {"tags", "reference"})  // both are tables; anything else would be dropped silently
             if ((*t)[k] && !(*t)[k].is_table())
-                throw InputError(line(file, *(*t)[k].node()) + ": " + what + "." + k + ": expected a table { ... } (got " +
-                                 typeName(*(*t)[k].node()) + ")");
+                throw InputError(line(file, *(*t)[k].node()) + ": " + what + "." + k +
+                                 ": expected a table { ... } (got " + typeName(*(*t)[k].node()) + ")");
         if (const auto* tags = (*t)["tags"].as_table())
             for (const auto& [k, v] : *tags) {
                 const std::string tag(k.str());
@@ -220,7 +225,8 @@ std::vector<SweepCase> parseCases(const toml::array& cases, const std::string& f
                                      (tag == "config" ? "configuration index column" : "axis"));
                 sc.tags[tag] = scalar(v, line(file, v) + ": sweep.cases.tags." + tag);
             }
-        if (const auto* ref = (*t)["reference"].as_table()) sc.reference = caseValues(*ref, file, what + ".reference", {});
+        if (const auto* ref = (*t)["reference"].as_table())
+            sc.reference = caseValues(*ref, file, what + ".reference", {});
         sc.values = caseValues(*t, file, what, {"name", "tags", "reference"});
         out.push_back(sc);
     }
@@ -248,9 +254,10 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
     int given = 0;
     for (const char* k : {"values", "range", "cases", "folder"}) given += f.node(k) != nullptr;
     if (given != 1)
-        f.fail(given ? "values" : "key", std::string(given ? "give only one of" : "needs one of") +
-                                            " values = [...], range = [start, stop, step], cases = [{ name = ..., ... }] "
-                                            "or folder = \"DIR\" (a file key's files)");
+        f.fail(given ? "values" : "key",
+               std::string(given ? "give only one of" : "needs one of") +
+                   " values = [...], range = [start, stop, step], cases = [{ name = ..., ... }] "
+                   "or folder = \"DIR\" (a file key's files)");
     if (f.node("folder")) {
         // Every file of the key's kind in a folder beside the experiment file, in name order (a MERL table folder
         // for fit_models): .binary for material.measured, .brdf for material.brdf.
@@ -271,8 +278,9 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
                 names.push_back(entry.path().filename().string());
         std::sort(names.begin(), names.end());
         if (names.empty())
-            f.fail("folder", "'" + printable(dir) + "' holds no " + (measured ? ".binary" : ".brdf") + " file" +
-                                 (measured ? " (MERL tables: https://www.merl.com/brdf/, or hilite brdf tabulate)" : ""));
+            f.fail("folder",
+                   "'" + printable(dir) + "' holds no " + (measured ? ".binary" : ".brdf") + " file" +
+                       (measured ? " (MERL tables: https://www.merl.com/brdf/, or hilite brdf tabulate)" : ""));
         const std::string origin = f.at("folder");
         for (const std::string& n : names) {
             const std::string path = (dir.back() == '/' ? dir : dir + "/") + n;
@@ -285,7 +293,8 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
     }
     if (f.node("range")) {
         const std::vector<double> r = f.numbers("range");
-        if (r.size() != 3 || !(r[2] > 0) || r[1] < r[0]) f.fail("range", "range = [start, stop, step], start <= stop, step > 0");
+        if (r.size() != 3 || !(r[2] > 0) || r[1] < r[0])
+            f.fail("range", "range = [start, stop, step], start <= stop, step > 0");
         const double count = std::floor((r[1] - r[0]) / r[2] + 1e-9) + 1;
         if (!std::isfinite(count) || count > double(kMaxConfigurations))
             f.fail("range", "gives more than " + std::to_string(kMaxConfigurations) + " values");
@@ -309,14 +318,18 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
         std::vector<std::string> fixed = {"config"};
         for (const auto& c : scene::columns()) fixed.push_back(c);
         for (const auto& c : measurement::measurementColumns()) fixed.push_back(c);
-        auto isFixed = [&](const std::string& name) { return std::find(fixed.begin(), fixed.end(), name) != fixed.end(); };
-        if (isFixed(axis.key)) f.fail("key", "'" + axis.key + "' is a column of every row; name a case axis otherwise (e.g. setting)");
+        auto isFixed = [&](const std::string& name) {
+            return std::find(fixed.begin(), fixed.end(), name) != fixed.end();
+        };
+        if (isFixed(axis.key))
+            f.fail("key", "'" + axis.key + "' is a column of every row; name a case axis otherwise (e.g. setting)");
         axis.cases = parseCases(*f.array("cases"), file, axis.key);
         if (axis.cases.empty()) f.fail("cases", "no cases");
         for (const auto& c : axis.cases)
             for (const auto& [tag, v] : c.tags.items())
                 if (isFixed(tag))
-                    f.fail("cases", "case '" + c.name + "': tag '" + tag + "' is a column of every row; name it otherwise");
+                    f.fail("cases",
+                           "case '" + c.name + "': tag '" + tag + "' is a column of every row; name it otherwise");
         for (const auto& c : axis.cases) axis.values.push_back(c.name);
     }
     return axis;
@@ -351,7 +364,8 @@ const toml::table* table(const toml::table& doc, const std::string& path, const 
     const toml::node* n = doc.get(name);
     if (!n) return nullptr;
     if (!n->is_table())
-        throw InputError(line(path, *n) + ": " + name + ": write it as a table [" + name + "] (got " + typeName(*n) + ")");
+        throw InputError(line(path, *n) + ": " + name + ": write it as a table [" + name + "] (got " + typeName(*n) +
+                         ")");
     return n->as_table();
 }
 
@@ -375,8 +389,8 @@ std::vector<const toml::table*> tables(const toml::table& doc, const std::string
 void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     const auto* t = table(doc, path, "fit");
     if (!t) return;
-    const Fields f(*t, path, "fit", {"models", "thresholds", "weights", "anisotropy", "f0", "geometry", "fresnel",
-                                     "max_evaluations"});
+    const Fields f(*t, path, "fit",
+                   {"models", "thresholds", "weights", "anisotropy", "f0", "geometry", "fresnel", "max_evaluations"});
     FitOptions o;
     if (f.node("models")) o.models = f.strings("models");
     if (f.node("thresholds")) o.thresholds = f.numbers("thresholds");
@@ -404,8 +418,9 @@ void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     }
     for (const char* other : {"match", "reference", "timing", "pareto"})
         if (doc.contains(other))
-            throw InputError(path + ": [" + std::string(other) + "]: not with [fit] (a fit row ranks models; it measures "
-                                                                 "no single scene)");
+            throw InputError(path + ": [" + std::string(other) +
+                             "]: not with [fit] (a fit row ranks models; it measures "
+                             "no single scene)");
     e.fit = o;
 }
 
@@ -437,13 +452,15 @@ void parseBounces(const toml::table& doc, const std::string& path, Experiment& e
     }
     for (const char* other : {"match", "reference", "timing", "pareto", "fit"})
         if (doc.contains(other))
-            throw InputError(path + ": [" + std::string(other) + "]: not with [bounces] (a bounce row traces light "
-                                                                 "paths; it measures no highlight)");
+            throw InputError(path + ": [" + std::string(other) +
+                             "]: not with [bounces] (a bounce row traces light "
+                             "paths; it measures no highlight)");
     e.bounces = s;
 }
 
 void parseErrorTables(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
-    if (const auto* ref = table(doc, path, "reference")) e.referenceErrors = Fields(*ref, path, "reference", {"errors"}).boolean("errors", true);
+    if (const auto* ref = table(doc, path, "reference"))
+        e.referenceErrors = Fields(*ref, path, "reference", {"errors"}).boolean("errors", true);
     if (const auto* timing = table(doc, path, "timing")) {
         const Fields f(*timing, path, "timing", {"repeats", "warmup"});
         e.timing = true;
@@ -473,16 +490,16 @@ namespace {
 
 /// Every top-level table must be one an experiment has.
 void checkTables(const toml::table& doc, const std::string& path) {
-    static const std::vector<std::string> allowed = {"experiment", "scene", "sweep", "match", "plot",
-                                                     "contact_sheet", "strip", "summary", "reference", "timing", "pareto", "fit",
-                                                     "bounces"};
+    static const std::vector<std::string> allowed = {"experiment",    "scene", "sweep",   "match",     "plot",
+                                                     "contact_sheet", "strip", "summary", "reference", "timing",
+                                                     "pareto",        "fit",   "bounces"};
     for (const auto& [k, v] : doc) {
         const std::string name(k.str());
         if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
             const std::string hint = didYouMean(name, allowed);
             throw InputError(line(path, v) + ": " + name + ": unknown table" +
-                             (hint.empty() ? std::string() : ", did you mean '" + hint + "'?") + " (allowed: " +
-                             join(allowed) + ")");
+                             (hint.empty() ? std::string() : ", did you mean '" + hint + "'?") +
+                             " (allowed: " + join(allowed) + ")");
         }
     }
 }
@@ -510,13 +527,15 @@ void parsePlots(const toml::table& doc, const std::string& path, Experiment& e, 
             for (const auto& c : *th) {
                 const auto* pair = c.as_array();
                 if (!pair || pair->size() != 2 || !(*pair)[0].is_string() || !(*pair)[1].is_string())
-                    throw InputError(line(path, c) + ": plot.theory: each curve is [\"title\", \"expression of x\"] (two strings)");
+                    throw InputError(line(path, c) +
+                                     ": plot.theory: each curve is [\"title\", \"expression of x\"] (two strings)");
                 const std::string expr = (*pair)[1].as_string()->get();
                 const std::string why = theoryError(expr);
                 if (!why.empty())
-                    throw InputError(line(path, c) + ": plot.theory: '" + printable(expr) + "': " + why +
-                                     " (allowed: muparser syntax in the variable x, constants pi and _e, functions such "
-                                     "as sin, cos, tan, asin, acos, atan, sqrt, exp, ln, log10, abs, min, max)");
+                    throw InputError(
+                        line(path, c) + ": plot.theory: '" + printable(expr) + "': " + why +
+                        " (allowed: muparser syntax in the variable x, constants pi and _e, functions such "
+                        "as sin, cos, tan, asin, acos, atan, sqrt, exp, ln, log10, abs, min, max)");
                 spec.theory.emplace_back((*pair)[0].as_string()->get(), expr);
             }
         e.plots.push_back(spec);
@@ -524,7 +543,8 @@ void parsePlots(const toml::table& doc, const std::string& path, Experiment& e, 
 }
 
 /// A contact sheet's rows or columns: `key` and its values, one scene assignment each.
-SweepAxis sheetAxis(const Fields& f, const std::string& keyName, const std::string& fallbackKey, const std::string& valuesName) {
+SweepAxis sheetAxis(const Fields& f, const std::string& keyName, const std::string& fallbackKey,
+                    const std::string& valuesName) {
     SweepAxis axis;
     axis.key = f.string(keyName, fallbackKey);
     const toml::array* values = f.array(valuesName);
@@ -537,7 +557,8 @@ SweepAxis sheetAxis(const Fields& f, const std::string& keyName, const std::stri
 
 void parseSheet(const toml::table& doc, const std::string& path, Experiment& e, Names& names) {
     if (const auto* sheet = table(doc, path, "contact_sheet")) {
-        const Fields f(*sheet, path, "contact_sheet", {"file", "size", "fov", "row_key", "rows", "column_key", "columns"});
+        const Fields f(*sheet, path, "contact_sheet",
+                       {"file", "size", "fov", "row_key", "rows", "column_key", "columns"});
         e.sheetFile = f.outputFile("file", e.sheetFile);
         names.claim(e.sheetFile, f.at("file"));
         if (const toml::node* size = f.node("size"))  // "512x256" or 256, as in a scene file's [camera]
@@ -621,7 +642,9 @@ std::vector<std::string> rowColumns(const Experiment& e) {
     for (const auto& c : scene::columns()) add(c);
     for (const auto& c : measurement::measurementColumns()) add(c);
     if (e.referenceErrors)
-        for (const char* c : {"ref_aspect", "ref_major_deg", "ref_minor_deg", "aspect_error", "major_error", "minor_error"}) add(c);
+        for (const char* c :
+             {"ref_aspect", "ref_major_deg", "ref_minor_deg", "aspect_error", "major_error", "minor_error"})
+            add(c);
     if (e.timing)
         for (const char* c : {"time_ms", "repeats", "error_estimate"}) add(c);
     if (e.fit) {
@@ -677,8 +700,8 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
     try {
         doc = toml::parse(e.text, path);
     } catch (const toml::parse_error& err) {
-        throw InputError(path + ":" + std::to_string(err.source().begin.line) + ": TOML syntax error: " +
-                         std::string(err.description()));
+        throw InputError(path + ":" + std::to_string(err.source().begin.line) +
+                         ": TOML syntax error: " + std::string(err.description()));
     }
     checkTables(doc, path);
     const std::string file = path.substr(path.rfind('/') + 1);
@@ -694,7 +717,8 @@ Experiment parseExperiment(const std::string& text, const std::string& path) {
     } else {
         e.name = e.title = stem;
         if (!outputNameError(e.name, "").empty())
-            throw InputError(path + ": experiment.name: the file's name gives no folder name; give [experiment] name = \"...\"");
+            throw InputError(
+                path + ": experiment.name: the file's name gives no folder name; give [experiment] name = \"...\"");
     }
     if (const auto* scene = table(doc, path, "scene")) e.base = scene::sceneValues(*scene, path);
     if (const auto* match = table(doc, path, "match")) {
@@ -764,7 +788,8 @@ Configurations Experiment::configurations() const {
             checkFitScenes(all, *fit);
         else if (bounces && resolveBounceScene(all).angles.size() != 1)
             throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
-        else if (!bounces && scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
+        else if (!bounces &&
+                 scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
             throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
         if ((i & 1023) == 0 || i + 1 == configs.size()) {
             const auto now = std::chrono::steady_clock::now();

@@ -3,15 +3,15 @@
 // scene file), [[sweep]] axes (key + values or range), optional [match] (lobe widths matched at normal
 // incidence), [[plot]], [contact_sheet] and [summary]. See experiments/*.toml and the README.
 
-#include "hilite/experiments/bounces.hpp"
-#include "hilite/experiments/fit.hpp"
 #include "experiments/pareto.hpp"
 #include "experiments/plot.hpp"
 #include "gl/context.hpp"
+#include "hilite/experiments/bounces.hpp"
+#include "hilite/experiments/fit.hpp"
 #include "hilite/measurement/measure_scene.hpp"
 #include "hilite/measurement/session.hpp"
-#include "render/renderer.hpp"
 #include "hilite/scene/resolve.hpp"
+#include "render/renderer.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -25,25 +25,25 @@ namespace hilite::experiments {
 
 struct Configuration {
     long index = 0;
-    scene::Values values;             ///< base scene, then one value per sweep axis
-    nlohmann::json sweep;             ///< the axis values of this configuration ("light.incidence": 30, ...)
-    nlohmann::json tags;              ///< case axes: their names and tags, written to the row as columns
-    scene::Values reference;          ///< case axes: what the reference scene changes (e.g. the exact Fresnel)
+    scene::Values values;     ///< base scene, then one value per sweep axis
+    nlohmann::json sweep;     ///< the axis values of this configuration ("light.incidence": 30, ...)
+    nlohmann::json tags;      ///< case axes: their names and tags, written to the row as columns
+    scene::Values reference;  ///< case axes: what the reference scene changes (e.g. the exact Fresnel)
 };
 
 /// One value of a case axis: a named group of scene keys (e.g. a scene, or a setting of the knobs).
 struct SweepCase {
     std::string name;
-    scene::Values values;             ///< the case's scene keys
-    scene::Values reference;          ///< `reference = { ... }`: keys changed only for the reference
-    nlohmann::json tags;              ///< `tags = { knob = "size" }`: extra row columns
+    scene::Values values;     ///< the case's scene keys
+    scene::Values reference;  ///< `reference = { ... }`: keys changed only for the reference
+    nlohmann::json tags;      ///< `tags = { knob = "size" }`: extra row columns
 };
 
 struct SweepAxis {
-    std::string key;                  ///< "light.incidence"; for a case axis the column of the case names
-    std::vector<std::string> values;  ///< as the command line spells them; for a case axis the case names
+    std::string key;                     ///< "light.incidence"; for a case axis the column of the case names
+    std::vector<std::string> values;     ///< as the command line spells them; for a case axis the case names
     std::vector<scene::Values> entries;  ///< one assignment per value, with its origin (file:line)
-    std::vector<SweepCase> cases;     ///< non-empty: a case axis (`cases = [...]` instead of values/range)
+    std::vector<SweepCase> cases;        ///< non-empty: a case axis (`cases = [...]` instead of values/range)
 };
 
 struct Experiment {
@@ -51,8 +51,8 @@ struct Experiment {
     std::string name, title, description;
     scene::Values base;
     std::vector<SweepAxis> axes;
-    scene::Values match;          ///< no values given: no width matching
-    bool matching = false;        ///< [match] present
+    scene::Values match;    ///< no values given: no width matching
+    bool matching = false;  ///< [match] present
     std::vector<PlotSpec> plots;
     std::string sheetFile = "contact_sheet.png", sheetRowKey, sheetColumnKey, sheetSize = "256x192";
     std::string sheetFov;  ///< [contact_sheet] fov: the photo views' field of view ("" = the view's default, 40 deg)
@@ -158,7 +158,7 @@ private:
     const Experiment& m_exp;
     std::vector<std::string> m_columns;
     double m_targetMajorDeg = 0;
-    std::map<std::string, double> m_matched;             ///< model -> matched width parameter
+    std::map<std::string, double> m_matched;              ///< model -> matched width parameter
     std::map<std::string, analysis::Shape> m_references;  ///< reference scene -> its measurement
     measurement::Session m_session;
 };

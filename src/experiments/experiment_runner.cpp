@@ -2,10 +2,10 @@
 
 #include "experiments/experiment.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/reports.hpp"
 #include "experiments/results.hpp"
+#include "hilite/core/error.hpp"
 #include "hilite/measurement/row.hpp"
 
 #include <algorithm>
@@ -38,8 +38,7 @@ void addErrors(nlohmann::json& row, const analysis::Shape& ref) {
 
 }  // namespace
 
-ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backend)
-    : m_exp(e), m_session(backend) {
+ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backend) : m_exp(e), m_session(backend) {
     m_columns.push_back("config");
     // Case axes: the case names and tags come first, after config (what the row is about).
     for (const auto& a : e.axes)
@@ -62,8 +61,9 @@ ExperimentRunner::ExperimentRunner(const Experiment& e, const std::string& backe
         target.merge(e.match);
         scene::Resolved r = scene::resolve(target);
         if (r.scene.brdfFile)
-            throw InputError(e.path + ": [match]: matching widths needs a CPU twin, and a .brdf file has none "
-                                      "(set its parameters by hand)");
+            throw InputError(e.path +
+                             ": [match]: matching widths needs a CPU twin, and a .brdf file has none "
+                             "(set its parameters by hand)");
         r.scene.light.incidenceDeg = 0;
         m_targetMajorDeg = rad2deg(measurement::twinHalfWidth(r.scene, r.setup.options.threshold));
     }
@@ -207,7 +207,8 @@ nlohmann::json ExperimentRunner::bounceRow(const scene::Values& values, nlohmann
 
 ImageF ExperimentRunner::photo(const scene::Values& values, int width, int height) {
     const scene::Resolved r = scene::resolve(values);
-    return m_session.rendererFor(r).render(r.scene, scene::viewCamera(r, scene::View::Photo, width, height), render::Output::Color);
+    return m_session.rendererFor(r).render(r.scene, scene::viewCamera(r, scene::View::Photo, width, height),
+                                           render::Output::Color);
 }
 
 void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohmann::json>& rows, double seconds) {

@@ -1,16 +1,16 @@
 #include "hilite/experiments/fit.hpp"
 
+#include "core/text.hpp"
+#include "experiments/plot.hpp"
 #include "hilite/brdf/params.hpp"
 #include "hilite/core/error.hpp"
 #include "hilite/core/math.hpp"
-#include "core/text.hpp"
-#include "experiments/plot.hpp"
-#include "io/image_io.hpp"
-#include "measurement/diagnose.hpp"
 #include "hilite/measurement/measure_scene.hpp"
 #include "hilite/measurement/row.hpp"
-#include "render/renderer.hpp"
 #include "hilite/scene/registry.hpp"
+#include "io/image_io.hpp"
+#include "measurement/diagnose.hpp"
+#include "render/renderer.hpp"
 
 #include <nlopt.hpp>
 
@@ -32,7 +32,7 @@ const char* const kUnusable[] = {"no_highlight", "mirror", "unbounded_at_horizon
 /// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0.
 struct Space {
     brdf::Model model;
-    const char* width;  ///< "exponent" or "roughness"
+    const char* width;     ///< "exponent" or "roughness"
     double lo, hi, guess;  ///< bounds and a start for ln(width)
     bool aniso, f0;
 };
@@ -40,7 +40,8 @@ struct Space {
 Space spaceOf(const std::string& name, const FitOptions& o) {
     const auto model = brdf::parseModel(name);
     Space s{*model, "roughness", std::log(1e-3), std::log(2.0), std::log(0.1), false, false};
-    if (brdf::usesExponent(*model)) s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false};
+    if (brdf::usesExponent(*model))
+        s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false};
     s.aniso = o.anisotropy && brdf::allowsAnisotropy(*model);
     s.f0 = o.f0 && brdf::isMicrofacet(*model);
     return s;
@@ -159,7 +160,8 @@ std::vector<FitSample> measureSweep(measurement::Session& session, const std::ve
         auto alone = [&](size_t j) {
             render::Scene sc = scenes[j].scene;
             sc.light.incidenceDeg = r.angles[i];
-            out[i * nt + j] = sampleOf(measurement::measure(&renderer, sc, scenes[j].setup).shape, r.angles[i], r.thresholds[j]);
+            out[i * nt + j] =
+                sampleOf(measurement::measure(&renderer, sc, scenes[j].setup).shape, r.angles[i], r.thresholds[j]);
         };
         render::Scene sc = scenes[jmin].scene;
         sc.light.incidenceDeg = r.angles[i];
@@ -214,7 +216,8 @@ double residualOf(const FitResult& r, const std::vector<FitSample>& model, bool 
 }
 
 /// The model's values at x (the space's parameters).
-scene::Values modelValues(const scene::Values& common, const Space& s, const FitOptions& o, const std::vector<double>& x) {
+scene::Values modelValues(const scene::Values& common, const Space& s, const FitOptions& o,
+                          const std::vector<double>& x) {
     scene::Values v = common;
     v.set("model", brdf::toString(s.model));
     v.set(s.width, exactText(std::exp(x[0])));
@@ -270,7 +273,7 @@ double startingWidth(const scene::Values& common, const Space& s, const FitOptio
 /// isotropic start the two are a saddle: GGX 0.1 x 0.2 stalled at 0.148 x 0.139); with F0, the F0 that gives
 /// the target's peak at the first angle (the peak scales with F0 where F = F0, at normal incidence).
 std::vector<std::vector<double>> startingPoints(measurement::Session& session, const scene::Values& common,
-                                               const Space& s, const FitOptions& o, const FitResult& r) {
+                                                const Space& s, const FitOptions& o, const FitResult& r) {
     const double w = startingWidth(common, s, o, r);
     const FitSample* first = nullptr;
     for (size_t k = 0; k < r.samples.size() && !first; ++k)
@@ -278,8 +281,8 @@ std::vector<std::vector<double>> startingPoints(measurement::Session& session, c
     std::vector<std::vector<double>> out;
     if (s.aniso && first && first->aspect > 0 && first->aspect < 1) {
         const double a = std::log(first->aspect);  // < 0
-        out.push_back({w + a, -a});  // y wider: alpha_x the minor axis's, alpha_y = alpha_x e^-a
-        out.push_back({w, a});       // x wider
+        out.push_back({w + a, -a});                // y wider: alpha_x the minor axis's, alpha_y = alpha_x e^-a
+        out.push_back({w, a});                     // x wider
     } else {
         out.push_back(s.aniso ? std::vector<double>{w, 0.0} : std::vector<double>{w});
     }
@@ -329,8 +332,9 @@ void checkFitOptions(const FitOptions& o) {
     for (const std::string& m : o.models) {
         const auto model = brdf::parseModel(m);
         if (!model || *model == brdf::Model::None || *model == brdf::Model::Tabulated)
-            throw InputError("--models: '" + m + "' is not a model with a width to fit (allowed: phong, phong-classic, "
-                                                 "retro, blinn, gaussian, beckmann, ggx)");
+            throw InputError("--models: '" + m +
+                             "' is not a model with a width to fit (allowed: phong, phong-classic, "
+                             "retro, blinn, gaussian, beckmann, ggx)");
     }
     if (o.thresholds.empty()) throw InputError("--thresholds: give at least one threshold in (0, 1)");
     for (double t : o.thresholds)
@@ -341,19 +345,20 @@ void checkFitOptions(const FitOptions& o) {
                              std::to_string(o.weights.size()));
         double sum = 0;
         for (double w : o.weights) {
-            if (!(w >= 0) || !std::isfinite(w)) throw InputError("--weights: each must be a finite number >= 0 (got " + fmt(w) + ")");
+            if (!(w >= 0) || !std::isfinite(w))
+                throw InputError("--weights: each must be a finite number >= 0 (got " + fmt(w) + ")");
             sum += w;
         }
         if (!(sum > 0)) throw InputError("--weights: at least one must be > 0");
     }
-    if (o.anisotropy && std::none_of(o.models.begin(), o.models.end(), [](const std::string& m) {
-            return brdf::allowsAnisotropy(*brdf::parseModel(m));
-        }))
+    if (o.anisotropy && std::none_of(o.models.begin(), o.models.end(),
+                                     [](const std::string& m) { return brdf::allowsAnisotropy(*brdf::parseModel(m)); }))
         throw InputError("--fit-anisotropy: needs beckmann or ggx among --models");
     if (o.f0 && std::none_of(o.models.begin(), o.models.end(),
                              [](const std::string& m) { return brdf::isMicrofacet(*brdf::parseModel(m)); }))
         throw InputError("--fit-f0: needs a microfacet model (blinn, gaussian, beckmann, ggx) among --models");
-    static const std::vector<std::string> geometries = {"none", "implicit", "cook-torrance", "smith-separable", "smith"};
+    static const std::vector<std::string> geometries = {"none", "implicit", "cook-torrance", "smith-separable",
+                                                        "smith"};
     if (!o.geometry.empty() && std::find(geometries.begin(), geometries.end(), o.geometry) == geometries.end())
         throw InputError("--fit-geometry: '" + o.geometry + "' (allowed: " + join(geometries) + ")");
     if (!o.fresnel.empty() && o.fresnel != "none" && o.fresnel != "schlick")
@@ -372,9 +377,8 @@ FitResult emptyResult(const scene::Values& target, const FitOptions& o) {
     r.thresholds = o.thresholds;
     r.weights = o.weights.empty() ? std::vector<double>(o.thresholds.size(), 1.0) : o.weights;
     r.angles = scene::resolve(target).angles;
-    r.aspectThreshold = *std::min_element(r.thresholds.begin(), r.thresholds.end(), [](double a, double b) {
-        return std::abs(a - 0.5) < std::abs(b - 0.5);
-    });
+    r.aspectThreshold = *std::min_element(r.thresholds.begin(), r.thresholds.end(),
+                                          [](double a, double b) { return std::abs(a - 0.5) < std::abs(b - 0.5); });
     return r;
 }
 
@@ -431,11 +435,9 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
             opt.set_xtol_abs(o.xtolAbs);
             opt.set_ftol_rel(1e-6);  // a flat residual (phong against a microfacet lobe) stops before xtol
             opt.set_maxeval(o.maxEvaluations);
-            opt.set_min_objective(
-                [](const std::vector<double>& xv, std::vector<double>&, void* data) {
-                    return (*static_cast<decltype(objective)*>(data))(xv);
-                },
-                &objective);
+            opt.set_min_objective([](const std::vector<double>& xv, std::vector<double>&,
+                                     void* data) { return (*static_cast<decltype(objective)*>(data))(xv); },
+                                  &objective);
             double value = 0;
             try {
                 fit.stop = stopText(opt.optimize(x, value));
@@ -457,7 +459,8 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
     }
     std::vector<size_t> order(r.fits.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return r.fits[a].residual < r.fits[b].residual; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return r.fits[a].residual < r.fits[b].residual; });
     for (size_t i = 0; i < order.size(); ++i) r.fits[order[i]].rank = int(i) + 1;
     return r;
 }
@@ -536,14 +539,17 @@ bool writeFitFolder(const std::string& dir, const FitResult& r, std::string& why
     const size_t jt = aspectIndex(r);
     for (size_t i = 0; i < r.angles.size(); ++i)
         if (r.samples[i * nt + jt].usable)
-            aspectRows.push_back({{"incidence", r.angles[i]}, {"aspect", r.samples[i * nt + jt].aspect}, {"series", "target"}});
+            aspectRows.push_back(
+                {{"incidence", r.angles[i]}, {"aspect", r.samples[i * nt + jt].aspect}, {"series", "target"}});
     for (const ModelFit& m : r.fits) {
         const std::string name = m.model + " (rank " + std::to_string(m.rank) + ")";
         const auto d = aspectResiduals(r, m);
         for (size_t i = 0; i < r.angles.size(); ++i) {
             if (m.samples[i * nt + jt].usable)
-                aspectRows.push_back({{"incidence", r.angles[i]}, {"aspect", m.samples[i * nt + jt].aspect}, {"series", name}});
-            if (std::isfinite(d[i])) residualRows.push_back({{"incidence", r.angles[i]}, {"residual", d[i]}, {"series", name}});
+                aspectRows.push_back(
+                    {{"incidence", r.angles[i]}, {"aspect", m.samples[i * nt + jt].aspect}, {"series", name}});
+            if (std::isfinite(d[i]))
+                residualRows.push_back({{"incidence", r.angles[i]}, {"residual", d[i]}, {"series", name}});
         }
     }
     PlotSpec a;

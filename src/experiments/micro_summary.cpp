@@ -3,8 +3,8 @@
 
 #include "experiments/reports.hpp"
 
-#include "measurement/micro_fields.hpp"
 #include "hilite/measurement/row.hpp"
+#include "measurement/micro_fields.hpp"
 #include "micro/masking.hpp"
 
 #include <cmath>
@@ -30,14 +30,16 @@ bool convergenceTables(const ByIncidence& byIncidence, std::ostringstream& md) {
     };
     bool checked = false;
     for (const auto& [inc, list] : byIncidence) {
-        md << "### theta_i = " << inc << " deg\n\n| bump period (px) | filter | patches/axis needed | aspect | analytic | "
-           << "semi-major (deg) | analytic | semi-minor (deg) | analytic | flags |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        md << "### theta_i = " << inc
+           << " deg\n\n| bump period (px) | filter | patches/axis needed | aspect | analytic | "
+           << "semi-major (deg) | analytic | semi-minor (deg) | analytic | flags "
+              "|\n|---|---|---|---|---|---|---|---|---|---|\n";
         const nlohmann::json* smallest = nullptr;
         for (const nlohmann::json* r : list) {
             md << "| " << num(*r, "bump_period_px") << " | " << r->value("bump_filter_used", std::string()) << " | "
                << num(*r, "bump_samples_center") << " | " << num(*r, "aspect") << " | " << num(*r, "analytic_aspect")
-               << " | " << num(*r, "major_deg") << " | " << num(*r, "analytic_major_deg") << " | " << num(*r, "minor_deg")
-               << " | " << num(*r, "analytic_minor_deg") << " | " << flagsOf(*r) << " |\n";
+               << " | " << num(*r, "major_deg") << " | " << num(*r, "analytic_major_deg") << " | "
+               << num(*r, "minor_deg") << " | " << num(*r, "analytic_minor_deg") << " | " << flagsOf(*r) << " |\n";
             if (!smallest || num(*r, "bump_period_px") < num(*smallest, "bump_period_px")) smallest = r;
             checked = checked || std::isfinite(num(*r, "prefilter_error"));
         }
@@ -54,25 +56,25 @@ bool convergenceTables(const ByIncidence& byIncidence, std::ostringstream& md) {
 
 /// The moments prefilter against supersampling, where --prefilter-check ran.
 void prefilterTable(const ByIncidence& byIncidence, std::ostringstream& md) {
-        md << "### The moments prefilter against supersampling\n\nWhere supersampling runs, the same frame was "
-              "also rendered with the moments prefilter and, supersampled, with the next seed. Block errors: rms over "
-              "8x8-pixel blocks of the highlight (where supersampling resolves the bumps) of the difference of block "
-              "means, relative to their mean; `noise` is the seed-to-seed difference / sqrt(2), `prefilter error` = "
-              "sqrt(block error^2 - noise^2). Shapes are over the analytic BRDF's.\n\n| theta_i | bump period (px) | "
-              "block error | noise | prefilter error | blocks (left out) | prefilter aspect - analytic | major | minor "
-              "| next seed aspect - analytic | major | minor |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-        for (const auto& [inc, list] : byIncidence)
-            for (const nlohmann::json* r : list) {
-                if (!std::isfinite(num(*r, "prefilter_error"))) continue;
-                md << "| " << inc << " | " << num(*r, "bump_period_px") << " | " << num(*r, "prefilter_block_error")
-                   << " | " << num(*r, "supersample_block_noise") << " | " << num(*r, "prefilter_error") << " | "
-                   << num(*r, "prefilter_blocks") << " (" << num(*r, "prefilter_unresolved_blocks") << ") | "
-                   << num(*r, "prefilter_aspect_minus_analytic") << " | " << num(*r, "prefilter_major_over_analytic")
-                   << " | " << num(*r, "prefilter_minor_over_analytic") << " | "
-                   << num(*r, "next_seed_aspect_minus_analytic") << " | " << num(*r, "next_seed_major_over_analytic")
-                   << " | " << num(*r, "next_seed_minor_over_analytic") << " |\n";
-            }
-        md << "\n";
+    md << "### The moments prefilter against supersampling\n\nWhere supersampling runs, the same frame was "
+          "also rendered with the moments prefilter and, supersampled, with the next seed. Block errors: rms over "
+          "8x8-pixel blocks of the highlight (where supersampling resolves the bumps) of the difference of block "
+          "means, relative to their mean; `noise` is the seed-to-seed difference / sqrt(2), `prefilter error` = "
+          "sqrt(block error^2 - noise^2). Shapes are over the analytic BRDF's.\n\n| theta_i | bump period (px) | "
+          "block error | noise | prefilter error | blocks (left out) | prefilter aspect - analytic | major | minor "
+          "| next seed aspect - analytic | major | minor |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const auto& [inc, list] : byIncidence)
+        for (const nlohmann::json* r : list) {
+            if (!std::isfinite(num(*r, "prefilter_error"))) continue;
+            md << "| " << inc << " | " << num(*r, "bump_period_px") << " | " << num(*r, "prefilter_block_error")
+               << " | " << num(*r, "supersample_block_noise") << " | " << num(*r, "prefilter_error") << " | "
+               << num(*r, "prefilter_blocks") << " (" << num(*r, "prefilter_unresolved_blocks") << ") | "
+               << num(*r, "prefilter_aspect_minus_analytic") << " | " << num(*r, "prefilter_major_over_analytic")
+               << " | " << num(*r, "prefilter_minor_over_analytic") << " | "
+               << num(*r, "next_seed_aspect_minus_analytic") << " | " << num(*r, "next_seed_major_over_analytic")
+               << " | " << num(*r, "next_seed_minor_over_analytic") << " |\n";
+        }
+    md << "\n";
 }
 
 /// The realised slopes of the field against the target NDF, and masking traced on the height field.
@@ -82,7 +84,8 @@ void slopesAndMasking(const nlohmann::json& any, std::ostringstream& md) {
     spec.kind = any.value("model", std::string()) == "ggx" ? micro::BumpKind::GGX : micro::BumpKind::Beckmann;
     spec.roughness = num(any, "roughness");
     spec.seed = uint64_t(num(any, "bump_seed"));
-    md << "### The realised slopes\n\n" << spec << ": " << measurement::realisedSlopes(spec)
+    md << "### The realised slopes\n\n"
+       << spec << ": " << measurement::realisedSlopes(spec)
        << " (Beckmann target: rms roughness/sqrt(2) = " << spec.roughness / std::sqrt(2.0)
        << " per axis, shares 0.125; KS is the largest gap between the realised and target radial CDFs over "
        << 4 * 1024 * 1024 << " points of the rendered, bilinear field).\n\n";
@@ -98,12 +101,13 @@ void slopesAndMasking(const nlohmann::json& any, std::ostringstream& md) {
         b.kind = micro::BumpKind::Beckmann;
         b.roughness = m;
         const auto rowsM = micro::traceMasking(micro::cachedBumpField(b), {60, 70, 80, 85, 88}, 40000, 7);
-        md << "Beckmann m = " << m << ":\n\n| theta (deg) | G1 traced | realised | Smith | G1(h) traced | G2(h) traced | "
+        md << "Beckmann m = " << m
+           << ":\n\n| theta (deg) | G1 traced | realised | Smith | G1(h) traced | G2(h) traced | "
            << "Smith G2 (height-correlated) | separable G1^2 |\n|---|---|---|---|---|---|---|---|\n";
         for (const auto& r : rowsM)
-            md << "| " << r.thetaDeg << " | " << r.g1 << " +- " << r.g1Err << " | " << r.g1Realized << " | " << r.g1Smith
-               << " | " << r.g1h << " +- " << r.g1hErr << " | " << r.g2 << " +- " << r.g2Err << " | " << r.g2Smith
-               << " | " << r.g2Uncorrelated << " |\n";
+            md << "| " << r.thetaDeg << " | " << r.g1 << " +- " << r.g1Err << " | " << r.g1Realized << " | "
+               << r.g1Smith << " | " << r.g1h << " +- " << r.g1hErr << " | " << r.g2 << " +- " << r.g2Err << " | "
+               << r.g2Smith << " | " << r.g2Uncorrelated << " |\n";
         md << "\n";
     }
     md << "Reading the masking tables: the traced G1 agrees with 1/(1 + Lambda) of the realised slopes, and with "

@@ -82,7 +82,8 @@ bool plotPareto(const std::string& dir, const ParetoSpec& spec, const std::vecto
                          << nlohmann::json(p.setting).dump() << "\n";
         if (p.front) onFront.push_back(&p);
     }
-    std::sort(onFront.begin(), onFront.end(), [](const ParetoPoint* a, const ParetoPoint* b) { return a->time < b->time; });
+    std::sort(onFront.begin(), onFront.end(),
+              [](const ParetoPoint* a, const ParetoPoint* b) { return a->time < b->time; });
     for (const auto* p : onFront)
         front << std::setprecision(10) << p->time << " " << std::max(p->error, floor) << " "
               << nlohmann::json(p->setting).dump() << "\n";
@@ -101,7 +102,8 @@ bool plotPareto(const std::string& dir, const ParetoSpec& spec, const std::vecto
        << "set ylabel " << quoteGnuplot(spec.error + " (worst over the scenes; log)") << "\n"
        << "set termoption noenhanced\n"  // keeps the underscores of column names
        << "set logscale xy\nset format y '1e%L'\nset grid\nset key outside right top box opaque\n";
-    for (double t : spec.targets) gp << "set arrow from graph 0, first " << t << " to graph 1, first " << t << " nohead dt 3 lc rgb 'gray40'\n";
+    for (double t : spec.targets)
+        gp << "set arrow from graph 0, first " << t << " to graph 1, first " << t << " nohead dt 3 lc rgb 'gray40'\n";
     gp << "plot " << quoteGnuplot(dat) << " index " << order.size()
        << " using 1:2 with steps lw 3 lc rgb '#80000000' title 'Pareto front'";
     for (size_t i = 0; i < order.size(); ++i)
@@ -119,7 +121,8 @@ std::string paretoMarkdown(const ParetoSpec& spec, const std::vector<ParetoPoint
        << "Per setting: the worst " << spec.error << " over its rows (scenes) and the mean " << spec.time
        << " over them; a setting is on the Pareto front when no other is both faster and more accurate.\n\n";
     if (!spec.targets.empty()) {
-        md << "| target " << spec.error << " | cheapest setting reaching it | worst error | mean time |\n|---|---|---|---|\n";
+        md << "| target " << spec.error
+           << " | cheapest setting reaching it | worst error | mean time |\n|---|---|---|---|\n";
         for (double t : spec.targets) {
             const ParetoPoint* p = cheapestReaching(points, t);
             md << std::setprecision(3) << "| " << t << " | ";

@@ -16,16 +16,16 @@ struct ParetoSpec {
     std::string setting = "setting";  ///< the row column naming a setting
     std::string series = "knob";      ///< the row column grouping settings in the plot
     std::string error = "aspect_error", time = "time_ms";
-    std::vector<double> targets;      ///< summary: the cheapest setting reaching each
+    std::vector<double> targets;  ///< summary: the cheapest setting reaching each
 };
 
 struct ParetoPoint {
     std::string setting, series;
-    double error = 0;           ///< worst (largest) error over the setting's rows
-    double time = 0;            ///< mean time over the setting's rows
+    double error = 0;                       ///< worst (largest) error over the setting's rows
+    double time = 0;                        ///< mean time over the setting's rows
     double majorError = 0, minorError = 0;  ///< worst major_error / minor_error, when the rows have them
     int rows = 0;
-    bool front = false;         ///< on the Pareto front
+    bool front = false;  ///< on the Pareto front
 };
 
 /// One point per setting, in first-seen order (rows without the error or time columns are skipped).

@@ -31,10 +31,21 @@ std::string quoteGnuplot(const std::string& s) {
 }
 
 const std::vector<std::string>& plotKeys() {
-    static const std::vector<std::string> keys = {
-        "top left", "top center", "top right", "center left", "center", "center right", "bottom left",
-        "bottom center", "bottom right", "outside right top", "outside right center", "outside right bottom",
-        "below", "above", "off"};
+    static const std::vector<std::string> keys = {"top left",
+                                                  "top center",
+                                                  "top right",
+                                                  "center left",
+                                                  "center",
+                                                  "center right",
+                                                  "bottom left",
+                                                  "bottom center",
+                                                  "bottom right",
+                                                  "outside right top",
+                                                  "outside right center",
+                                                  "outside right bottom",
+                                                  "below",
+                                                  "above",
+                                                  "off"};
     return keys;
 }
 
@@ -92,8 +103,8 @@ std::string outputNameError(const std::string& name, const std::string& extensio
     if (name.front() == '-') return "starts with '-'";
     for (char c : name)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "holds a control character";
-    if (!extension.empty() &&
-        (name.size() <= extension.size() || name.compare(name.size() - extension.size(), extension.size(), extension) != 0))
+    if (!extension.empty() && (name.size() <= extension.size() ||
+                               name.compare(name.size() - extension.size(), extension.size(), extension) != 0))
         return "must end in " + extension;
     return "";
 }

@@ -12,10 +12,10 @@
 namespace hilite::experiments {
 
 struct PlotSpec {
-    std::string file;               ///< PNG name inside the output folder (checked: outputNameError)
+    std::string file;  ///< PNG name inside the output folder (checked: outputNameError)
     std::string title;
-    std::string x, y;               ///< row fields
-    std::string series;             ///< row field whose values make separate lines ("" = one line)
+    std::string x, y;    ///< row fields
+    std::string series;  ///< row field whose values make separate lines ("" = one line)
     std::vector<std::pair<std::string, std::string>> theory;  ///< (title, muparser expression of x)
     std::string xlabel, ylabel;
     std::string key = "bottom left";  ///< legend position, one of plotKeys()

@@ -1,16 +1,16 @@
 #include "experiments/reports.hpp"
 
-#include "hilite/brdf/evaluate.hpp"
 #include "core/text.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/strip.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/measurement/row.hpp"
 #include "io/image_io.hpp"
 #include "io/label.hpp"
-#include "hilite/measurement/row.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -71,7 +71,8 @@ bool contactSheet(ExperimentRunner& runner, const std::string& dir) {
                         sheet.pixel(x0 + x, sheet.height - yTop - th + y)[c] =
                             float(tile.pixel(x, y)[c] * (c < 3 ? s : 1.0));
             if (ri == 0) io::drawText(sheet, x0, io::textHeight(scale), e.sheetColumns[size_t(ci)], scale);
-            if (ci == 0) io::drawText(sheet, 2, yTop + th / 2 - io::textHeight(scale) / 2, e.sheetRows[size_t(ri)], scale);
+            if (ci == 0)
+                io::drawText(sheet, 2, yTop + th / 2 - io::textHeight(scale) / 2, e.sheetRows[size_t(ri)], scale);
         }
     io::writePng(dir + "/" + e.sheetFile, sheet, {});
     return true;
@@ -89,7 +90,8 @@ void strips(const Experiment& e, const std::string& dir, Report& out) {
             double c, s;
             cosSinDeg(t, c, s);
             const dvec3 F = brdf::fresnel(p, c);
-            for (int ch = 0; ch < 3; ++ch) frows.push_back({{"theta_deg", t}, {"channel", std::string(1, "rgb"[ch])}, {"F", F[ch]}});
+            for (int ch = 0; ch < 3; ++ch)
+                frows.push_back({{"theta_deg", t}, {"channel", std::string(1, "rgb"[ch])}, {"F", F[ch]}});
         }
         PlotSpec spec;
         spec.file = material + "_fresnel.png";
@@ -99,10 +101,10 @@ void strips(const Experiment& e, const std::string& dir, Report& out) {
         if (!plot(dir, spec, frows, why)) out.notes.push_back("plot " + spec.file + " not made: " + why);
         const auto st = fresnelStats(p);
         out.md << std::setprecision(4) << "![" << material << " strip](" << file << ")\n\n![" << material
-               << " Fresnel](" << spec.file << ")\n\n" << material << " (" << brdf::toString(p.fresnel)
-               << "): F(0) = (" << st.normal.x << ", " << st.normal.y << ", " << st.normal.z << "), red dips to "
-               << st.redMin << " at " << st.redMinThetaDeg << " deg, F(89) = (" << st.grazing89.x << ", "
-               << st.grazing89.y << ", " << st.grazing89.z << ").\n\n";
+               << " Fresnel](" << spec.file << ")\n\n"
+               << material << " (" << brdf::toString(p.fresnel) << "): F(0) = (" << st.normal.x << ", " << st.normal.y
+               << ", " << st.normal.z << "), red dips to " << st.redMin << " at " << st.redMinThetaDeg
+               << " deg, F(89) = (" << st.grazing89.x << ", " << st.grazing89.y << ", " << st.grazing89.z << ").\n\n";
     }
 }
 
@@ -118,8 +120,8 @@ std::string shapeSection(const Experiment& e, const Rows& rows) {
     std::vector<std::string> order;
     for (const auto& r : rows) {
         if (!r.contains(e.summarySeries) || r["aspect"].is_null()) continue;
-        const std::string s = r[e.summarySeries].is_string() ? r[e.summarySeries].get<std::string>()
-                                                             : r[e.summarySeries].dump();
+        const std::string s =
+            r[e.summarySeries].is_string() ? r[e.summarySeries].get<std::string>() : r[e.summarySeries].dump();
         if (!worst.count(s)) order.push_back(s), worst[s] = {0, 0};
         const double x = r.value(e.summaryX, 0.0), a = r["aspect"].get<double>();
         if (r["flags"].empty() && x <= 80) {
@@ -156,7 +158,8 @@ void header(ExperimentRunner& runner, size_t rows, double seconds, Report& out) 
 /// [fit]: the ranking, a line per target, and how often each model came first.
 std::string fitSection(const Experiment& e, const Rows& rows) {
     std::ostringstream md;
-    md << "## Which model fits\n\nEach row: the models fitted to the target's highlight over its incidences and the thresholds ";
+    md << "## Which model fits\n\nEach row: the models fitted to the target's highlight over its incidences and the "
+          "thresholds ";
     for (size_t j = 0; j < e.fit->thresholds.size(); ++j) md << (j ? ", " : "") << e.fit->thresholds[j];
     md << "; the residual is the weighted RMS of ln(fit / target) of the semi-axes (0.01: about 1% off), the rank in "
           "brackets.\n\n| target |";
@@ -173,8 +176,7 @@ std::string fitSection(const Experiment& e, const Rows& rows) {
             char buf[64];
             if (res != r.end() && res->is_number() && rank != r.end() && rank->is_number())
                 std::snprintf(buf, sizeof buf, " %.3e (%d) |", res->get<double>(), rank->get<int>());
-            else
-                std::snprintf(buf, sizeof buf, " - |");
+            else std::snprintf(buf, sizeof buf, " - |");
             md << buf;
         }
         const std::string best = r.value("best_model", std::string("-"));
@@ -216,9 +218,11 @@ void writeReports(ExperimentRunner& runner, const std::string& dir, const Rows& 
     if (e.bounces) {
         if (!e.bounceColoursFile.empty()) {
             writeBounceColours(rows, dir + "/" + e.bounceColoursFile);
-            out.md << "![colour of each bounce order](" << e.bounceColoursFile << ")\n\nThe colour of each bounce "
-                      "order's light (its mean Fresnel product, linear sRGB written sRGB-encoded), a row per result row: "
-                      "orders 1, 2, 3 and >= 2 traced on the height field, and Kulla-Conty's F_ms.\n\n";
+            out.md
+                << "![colour of each bounce order](" << e.bounceColoursFile
+                << ")\n\nThe colour of each bounce "
+                   "order's light (its mean Fresnel product, linear sRGB written sRGB-encoded), a row per result row: "
+                   "orders 1, 2, 3 and >= 2 traced on the height field, and Kulla-Conty's F_ms.\n\n";
         }
         out.md << bounceSection(rows);
     }

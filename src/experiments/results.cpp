@@ -1,9 +1,9 @@
 #include "experiments/results.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
 #include "experiments/experiment.hpp"
+#include "hilite/core/error.hpp"
 #include "hilite/scene/registry.hpp"
 
 #include <algorithm>
@@ -139,23 +139,25 @@ void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file,
     for (size_t i = 0; i < rows.size(); ++i) {
         const nlohmann::json& r = rows[i];
         const long index = r["config"].get<long>();
-        const std::string at = file + ":" + std::to_string(i + 1) + ": row " + std::to_string(i + 1) + " (configuration " +
-                               std::to_string(index) + ")";
+        const std::string at = file + ":" + std::to_string(i + 1) + ": row " + std::to_string(i + 1) +
+                               " (configuration " + std::to_string(index) + ")";
         if (index < 0 || size_t(index) >= configs.size())
             throw InputError(at + ": the experiment '" + e.path + "' has only " + std::to_string(configs.size()) +
                              " configurations: these results are of another experiment (run without --resume, or "
                              "into another folder)");
         const auto fp = r.find("fingerprint");
         if (fp == r.end() || !fp->is_string())
-            throw InputError(at + ": fingerprint: the row has none (written by an older hilite): its configuration "
-                                  "cannot be checked; run without --resume, or into another folder");
+            throw InputError(at +
+                             ": fingerprint: the row has none (written by an older hilite): its configuration "
+                             "cannot be checked; run without --resume, or into another folder");
         const Configuration c = configs[size_t(index)];
         const std::string now = fingerprint(e, c);
         if (fp->get<std::string>() == now) continue;
         const std::string diff = whatDiffers(r, c);
-        throw InputError(at + (diff.empty() ? " was measured with another configuration (fingerprint " +
-                                                  fp->get<std::string>() + ", the experiment now gives " + now + ")"
-                                            : diff) +
+        throw InputError(at +
+                         (diff.empty() ? " was measured with another configuration (fingerprint " +
+                                             fp->get<std::string>() + ", the experiment now gives " + now + ")"
+                                       : diff) +
                          ": the results are of another or an edited experiment; run without --resume, or into "
                          "another folder");
     }

@@ -1,9 +1,9 @@
 #include "hilite/experiments/run.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/results.hpp"
+#include "hilite/core/error.hpp"
 #include "io/image_io.hpp"
 
 #include <chrono>
@@ -37,7 +37,8 @@ void checkSameExperiment(const std::string& first, const Experiment& a, const Co
     const auto cb = b.configurations();
     const std::string why = "merge: '" + other + "' and '" + first + "' are shards of different experiments";
     if (ca.size() != cb.size())
-        throw InputError(why + " (" + std::to_string(cb.size()) + " and " + std::to_string(ca.size()) + " configurations)");
+        throw InputError(why + " (" + std::to_string(cb.size()) + " and " + std::to_string(ca.size()) +
+                         " configurations)");
     for (size_t i = 0; i < ca.size(); ++i)
         if (fingerprint(b, cb[i]) != fingerprint(a, ca[i]))
             throw InputError(why + " (configuration " + std::to_string(ca[i].index) + " differs)");
@@ -58,7 +59,8 @@ void parseShard(const std::string& s, int& k, int& n, const std::string& name) {
 
 RunSummary runExperiment(const RunOptions& o) {
     if (o.shardN < 1 || o.shardK < 1 || o.shardK > o.shardN)
-        throw InputError("shard: expected 1 <= K <= N (got " + std::to_string(o.shardK) + "/" + std::to_string(o.shardN) + ")");
+        throw InputError("shard: expected 1 <= K <= N (got " + std::to_string(o.shardK) + "/" +
+                         std::to_string(o.shardN) + ")");
     if (o.experiment.empty()) throw InputError("run: empty experiment name (give a file, or a name in experiments/)");
     const Experiment exp = loadExperiment(findExperiment(o.experiment));
     RunSummary s;
@@ -72,7 +74,7 @@ RunSummary runExperiment(const RunOptions& o) {
         s.configurations = configs.size();
         return s;
     }
-    io::makeOutputDir(s.dir, o.outName);  // only now: bad input leaves not even an empty folder behind
+    io::makeOutputDir(s.dir, o.outName);          // only now: bad input leaves not even an empty folder behind
     const io::FolderLock lock(s.dir, o.outName);  // a second run or merge into this folder is refused, not mixed in
     ResultsWriter writer(s.dir, runner.columns(), o.resume, exp, configs);
     writeExperimentCopy(exp, s.dir);

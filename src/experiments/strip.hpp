@@ -14,10 +14,10 @@ void writeFresnelStrip(const brdf::Params& p, int width, int height, const std::
                        const std::string& label = "");
 
 struct StripStats {
-    dvec3 normal;              ///< F at 0 degrees
-    dvec3 grazing89;           ///< F at 89 degrees
-    double redMin = 0;         ///< smallest red over 0..90
-    double redMinThetaDeg = 0; ///< where it is
+    dvec3 normal;               ///< F at 0 degrees
+    dvec3 grazing89;            ///< F at 89 degrees
+    double redMin = 0;          ///< smallest red over 0..90
+    double redMinThetaDeg = 0;  ///< where it is
 };
 StripStats fresnelStats(const brdf::Params& p);
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "hilite/core/error.hpp"
 #include "gl/context.hpp"
+#include "hilite/core/error.hpp"
 
 namespace hilite::gl {
 
@@ -33,7 +33,7 @@ struct EglApi {
     PFNEGLDESTROYCONTEXTPROC destroyContext = nullptr;
     PFNEGLMAKECURRENTPROC makeCurrent = nullptr;
     PFNEGLGETERRORPROC getError = nullptr;
-    PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;          // EGL_EXT_device_enumeration
+    PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;            // EGL_EXT_device_enumeration
     PFNEGLQUERYDEVICESTRINGEXTPROC queryDeviceString = nullptr;  // EGL_EXT_device_query
 };
 
@@ -142,9 +142,13 @@ std::unique_ptr<BackendImpl> createContextOn(EGLDisplay dpy, std::string& why) {
         return nullptr;
     }
     for (EGLint minorVersion : {45, 33}) {
-        const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, minorVersion / 10, EGL_CONTEXT_MINOR_VERSION,
-                                  minorVersion % 10, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+        const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                  minorVersion / 10,
+                                  EGL_CONTEXT_MINOR_VERSION,
+                                  minorVersion % 10,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                  EGL_NONE};
         EGLContext ctx = g_egl.createContext(dpy, config, EGL_NO_CONTEXT, attribs);
         if (ctx != EGL_NO_CONTEXT) return std::make_unique<EGLBackend>(dpy, ctx);
     }

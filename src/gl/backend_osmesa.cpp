@@ -9,8 +9,8 @@
 #include <memory>
 #include <string>
 
-#include "hilite/core/error.hpp"
 #include "gl/context.hpp"
+#include "hilite/core/error.hpp"
 
 namespace hilite::gl {
 
@@ -75,9 +75,19 @@ std::unique_ptr<BackendImpl> createOSMesaBackend(std::string& why) {
     // Core profile; 4.5 is llvmpipe's maximum here (asking for 4.6 returns NULL), 3.3 the floor we need.
     // No depth bits: the default framebuffer is never drawn; our FBO has its own depth attachment.
     for (int minorVersion : {45, 33}) {
-        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                               OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, minorVersion / 10,
-                               OSMESA_CONTEXT_MINOR_VERSION, minorVersion % 10, 0};
+        const int attribs[] = {OSMESA_FORMAT,
+                               OSMESA_RGBA,
+                               OSMESA_DEPTH_BITS,
+                               0,
+                               OSMESA_STENCIL_BITS,
+                               0,
+                               OSMESA_PROFILE,
+                               OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION,
+                               minorVersion / 10,
+                               OSMESA_CONTEXT_MINOR_VERSION,
+                               minorVersion % 10,
+                               0};
         if (OSMesaContext ctx = create(attribs, nullptr))
             return std::make_unique<OSMesaBackend>(lib, ctx, makeCurrent, destroy, getProc);
     }

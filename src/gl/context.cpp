@@ -1,12 +1,12 @@
 #include "gl/context.hpp"
 
-#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
+#include "hilite/core/error.hpp"
 
 #include <glad/gl.h>
 
-#include <cstdlib>
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <ostream>
 

@@ -16,7 +16,6 @@
 
 namespace hilite::gl {
 
-
 struct ContextInfo {
     Backend backend = Backend::Auto;
     int device = -1;  ///< egl-device: the index among eglDevices(); -1 for the other backends

@@ -1,7 +1,7 @@
 #include "gl/framebuffer.hpp"
 
-#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
+#include "hilite/core/error.hpp"
 
 #include <glad/gl.h>
 
@@ -30,7 +30,8 @@ bool completes(int w, int h) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteRenderbuffers(2, rb);
     glDeleteFramebuffers(1, &fbo);
-    while (glGetError() != GL_NO_ERROR) {}
+    while (glGetError() != GL_NO_ERROR) {
+    }
     return ok;
 }
 
@@ -72,7 +73,8 @@ Framebuffer::Framebuffer(int width, int height) : m_width(width), m_height(heigh
         }
         throw InputError("--size: " + std::to_string(width) + "x" + std::to_string(height) +
                          " is more than this GL can allocate for its float framebuffer; the largest square that "
-                         "works here is " + std::to_string(lo) + "x" + std::to_string(lo));
+                         "works here is " +
+                         std::to_string(lo) + "x" + std::to_string(lo));
     }
     if (error != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
         char hex[64];

@@ -1,7 +1,7 @@
 #include "gl/program.hpp"
 
-#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
+#include "hilite/core/error.hpp"
 
 #include <glad/gl.h>
 
@@ -11,14 +11,17 @@
 namespace hilite::gl {
 
 std::string joinSources(const std::vector<SourcePiece>& pieces) {
-    if (pieces.size() > kMaxPieces) throw SystemError("shader: more than " + std::to_string(kMaxPieces) + " source pieces");
+    if (pieces.size() > kMaxPieces)
+        throw SystemError("shader: more than " + std::to_string(kMaxPieces) + " source pieces");
     std::string out;
     for (size_t i = 0; i < pieces.size(); ++i) {
         if (pieces[i].firstLine < 1 || pieces[i].firstLine >= kLineStride / 2)
-            throw SystemError("shader: piece " + pieces[i].file + " starts at line " + std::to_string(pieces[i].firstLine));
+            throw SystemError("shader: piece " + pieces[i].file + " starts at line " +
+                              std::to_string(pieces[i].firstLine));
         // Piece 0 holds #version, which must come first; later pieces announce where they come from.
         if (i > 0)
-            out += "#line " + std::to_string(long(i) * kLineStride + pieces[i].firstLine) + " " + std::to_string(i) + "\n";
+            out +=
+                "#line " + std::to_string(long(i) * kLineStride + pieces[i].firstLine) + " " + std::to_string(i) + "\n";
         out += pieces[i].text;
         if (!out.empty() && out.back() != '\n') out += '\n';
     }
@@ -40,7 +43,8 @@ Location findLocation(const std::string& s) {
     };
     for (size_t i = 0; i < s.size(); ++i) {
         // A match starting inside a number would have started at its first digit (leftmost, as regex_search).
-        if (!std::isdigit(static_cast<unsigned char>(s[i])) || (i > 0 && std::isdigit(static_cast<unsigned char>(s[i - 1]))))
+        if (!std::isdigit(static_cast<unsigned char>(s[i])) ||
+            (i > 0 && std::isdigit(static_cast<unsigned char>(s[i - 1]))))
             continue;
         const size_t a = digitsFrom(i);
         if (a >= s.size() || s[a] != ':') continue;
@@ -126,9 +130,9 @@ Program::Program(const std::vector<SourcePiece>& vertex, const std::vector<Sourc
         glDeleteProgram(m_id);
         m_id = 0;
         const std::string translated = translateLog(log.c_str(), fragment);
-        throw ShaderError("shader program failed to link (" + vertex.back().file + " + " + fragment.back().file +
-                              "):\n" + translated,
-                          translated);
+        throw ShaderError(
+            "shader program failed to link (" + vertex.back().file + " + " + fragment.back().file + "):\n" + translated,
+            translated);
     }
     HILITE_GL_CHECK_WHAT("glLinkProgram");
 }

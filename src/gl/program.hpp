@@ -13,7 +13,8 @@ namespace hilite::gl {
 /// A shader that failed to compile or link; `log` is the driver's log with "file:line:" locations.
 class ShaderError : public SystemError {
 public:
-    ShaderError(const std::string& what, std::string translatedLog) : SystemError(what), log(std::move(translatedLog)) {}
+    ShaderError(const std::string& what, std::string translatedLog)
+        : SystemError(what), log(std::move(translatedLog)) {}
     std::string log;
 };
 

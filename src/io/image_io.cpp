@@ -1,7 +1,7 @@
 #include "io/image_io.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/files.hpp"
+#include "hilite/core/error.hpp"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_WRITE_NO_STDIO
@@ -49,7 +49,8 @@ void requireReplaceable(const std::string& path, const std::string& flag) {
     struct stat st {};
     if (::lstat(path.c_str(), &st) != 0) return;  // absent: created
     if (!S_ISREG(st.st_mode))
-        throw InputError(flag + ": '" + path + "' is " + fileKind(st.st_mode) + "; an output replaces only a regular file");
+        throw InputError(flag + ": '" + path + "' is " + fileKind(st.st_mode) +
+                         "; an output replaces only a regular file");
 }
 
 void writeAll(int fd, const std::string& bytes, const std::string& path) {
@@ -94,7 +95,8 @@ void checkOutputDir(const std::string& dir, const std::string& flag) {
     struct stat st {};
     for (;;) {
         if (::stat(existing.c_str(), &st) == 0) break;
-        if (errno != ENOENT && errno != ENOTDIR) throw InputError(flag + ": cannot use '" + dir + "' (" + existing + ": " + errnoText() + ")");
+        if (errno != ENOENT && errno != ENOTDIR)
+            throw InputError(flag + ": cannot use '" + dir + "' (" + existing + ": " + errnoText() + ")");
         const auto slash = existing.rfind('/');
         existing = slash == std::string::npos ? "." : slash == 0 ? "/" : existing.substr(0, slash);
     }
@@ -189,7 +191,8 @@ void writePng(const std::string& path, const ImageF& img, const Exposure& e) {
         for (int x = 0; x < img.width; ++x)
             for (int c = 0; c < 3; ++c) {
                 const double v = srgbEncode(double(row[x * img.channels + std::min(c, img.channels - 1)]) * scale);
-                rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)] = (unsigned char)std::lround(v * 255.0);
+                rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)] =
+                    (unsigned char)std::lround(v * 255.0);
             }
     }
     std::string bytes;

@@ -36,12 +36,13 @@ void renderInto(render::Renderer& renderer, const render::Scene& scene, const Pi
 }
 
 /// Searches the frame with coarse renders only; returns why it gave up ("" when it found the region).
-std::string searchBlind(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup,
-                        Frame& frame, Measurement& m) {
+std::string searchBlind(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup, Frame& frame,
+                        Measurement& m) {
     const dvec3 mirror = liftAboveHorizon(scene.light.chart().wr());
     thread_local ImageF coarse;
     for (int i = 0; i < setup.maxBlindRenders; ++i) {
-        const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.coarseSize, setup.coarseSize);
+        const PinholeCamera cam =
+            measurementCamera(scene, frame.center, frame.fovDeg, setup.coarseSize, setup.coarseSize);
         renderInto(renderer, scene, cam, coarse, m);
         const auto t0 = Clock::now();
         const RegionBox box = regionBox(coarse, setup.options.threshold);

@@ -1,8 +1,8 @@
 #include "measurement/diagnose.hpp"
 
 #include "hilite/brdf/evaluate.hpp"
-#include "hilite/render/area_light.hpp"
 #include "hilite/measurement/measure_scene.hpp"
+#include "hilite/render/area_light.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -89,13 +89,13 @@ void diagnose(const render::Scene& scene, double threshold, Path path, analysis:
     if (path != Path::Reference && scene.light.area() && render::lightRule(scene).error > kLightRuleFlag &&
         !shape.has(Flag::LightUndersampled))
         shape.flags.push_back(Flag::LightUndersampled);
-    if (unboundedAtHorizon(scene, shape) && !shape.has(Flag::UnboundedAtHorizon)) shape.flags.push_back(Flag::UnboundedAtHorizon);
+    if (unboundedAtHorizon(scene, shape) && !shape.has(Flag::UnboundedAtHorizon))
+        shape.flags.push_back(Flag::UnboundedAtHorizon);
     const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
     if (!(w.peak > 0)) return;
     // The lobe exists, yet no pixel centre of a fixed frame sees it: the frame is too coarse for it.
     if (path != Path::Reference && shape.has(Flag::NoHighlight)) replace(shape, Flag::NoHighlight, Flag::UnderResolved);
-    if (path == Path::Gl && w.major > 0 && w.minor < kEffectivelyMirrorHalfWidth &&
-        !shape.has(Flag::EffectivelyMirror))
+    if (path == Path::Gl && w.major > 0 && w.minor < kEffectivelyMirrorHalfWidth && !shape.has(Flag::EffectivelyMirror))
         shape.flags.push_back(Flag::EffectivelyMirror);
 }
 

@@ -35,7 +35,9 @@ struct Lobe {
     }
 };
 
-dvec3 ringDirection(double elevationDeg, double azimuthDeg) { return sphericalDirectionDeg(90.0 - elevationDeg, azimuthDeg); }
+dvec3 ringDirection(double elevationDeg, double azimuthDeg) {
+    return sphericalDirectionDeg(90.0 - elevationDeg, azimuthDeg);
+}
 
 /// Compass search (8 directions) in a chart about `start`: a step that finds a higher point moves there and
 /// doubles, else halves, from 1 deg down to 1e-10 rad. Points below the horizon (lobe 0) never win, so a peak
@@ -46,8 +48,8 @@ std::pair<dvec3, double> climb(const Lobe& lobe, const dvec3& start, double unti
     const MirrorChart chart = about.light.chart();
     dvec2 q(0.0);
     double best = lobe(chart.direction(0, 0));
-    static const dvec2 dirs[8] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0.7071, 0.7071}, {-0.7071, -0.7071},
-                                  {0.7071, -0.7071}, {-0.7071, 0.7071}};
+    static const dvec2 dirs[8] = {
+        {1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0.7071, 0.7071}, {-0.7071, -0.7071}, {0.7071, -0.7071}, {-0.7071, 0.7071}};
     double step = first;
     for (int iter = 0; iter < 4000 && step > until; ++iter) {
         dvec2 next = q;
@@ -88,9 +90,11 @@ LobeSurvey scannedLobe(const render::Scene& scene) {
 std::string keyOf(const render::Scene& s, double frac) {
     std::ostringstream key;
     key.precision(17);
-    key << s << " type=" << int(s.light.type) << " radius=" << s.light.radius << " angle=" << s.light.angleDeg << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get() << " measured=" << s.brdf.measured.get()
+    key << s << " type=" << int(s.light.type) << " radius=" << s.light.radius << " angle=" << s.light.angleDeg
+        << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get() << " measured=" << s.brdf.measured.get()
         << " spectrum=" << s.brdf.spectrum.get() << " frac=" << frac;
-    if (s.light.chartCenter) key << " centre=" << s.light.chartCenter->x << "," << s.light.chartCenter->y << "," << s.light.chartCenter->z;
+    if (s.light.chartCenter)
+        key << " centre=" << s.light.chartCenter->x << "," << s.light.chartCenter->y << "," << s.light.chartCenter->z;
     return key.str();
 }
 
@@ -170,8 +174,8 @@ LobeSurvey scan(const render::Scene& scene) {
     const double horizontal = std::hypot(s.peakDirection.x, s.peakDirection.y);
     if (s.peakDirection.z < 0.05 && horizontal > 0) {
         const double z = 0.5 * s.peakDirection.z;
-        const dvec3 below = dvec3(s.peakDirection.x, s.peakDirection.y, 0.0) / horizontal * std::sqrt(1.0 - z * z) +
-                            dvec3(0.0, 0.0, z);
+        const dvec3 below =
+            dvec3(s.peakDirection.x, s.peakDirection.y, 0.0) / horizontal * std::sqrt(1.0 - z * z) + dvec3(0.0, 0.0, z);
         s.peakOnHorizon = lobe(below) >= s.peak;
         // As diagnose's unboundedAtHorizon: 1 / cos theta_o rises 1000-fold from 1e-3 to 1e-6 of the height.
         const dvec3 flat = dvec3(s.peakDirection.x, s.peakDirection.y, 0.0) / horizontal;
@@ -183,7 +187,9 @@ LobeSurvey scan(const render::Scene& scene) {
     // passes its peak below 1e-14 rad): the lobe 1e-12 rad above the horizon against 1e-9 rad, per azimuth.
     for (int j = 0; j < J && !s.unbounded; ++j) {
         const double phi = deg2rad(s.azimuth0Deg + 360.0 * j / J);
-        auto at = [&](double e) { return lobe(dvec3(std::cos(phi) * std::cos(e), std::sin(phi) * std::cos(e), std::sin(e))); };
+        auto at = [&](double e) {
+            return lobe(dvec3(std::cos(phi) * std::cos(e), std::sin(phi) * std::cos(e), std::sin(e)));
+        };
         const double high = at(1e-9);
         s.unbounded = high > 0 && at(1e-12) > 100.0 * high;
     }
@@ -258,7 +264,8 @@ LobeSurvey survey(const render::Scene& scene, double frac) {
     });
     std::vector<int> rank(order.size());
     std::vector<SurveyPart> sorted;
-    for (size_t r = 0; r < order.size(); ++r) rank[size_t(order[r])] = int(r), sorted.push_back(s.parts[size_t(order[r])]);
+    for (size_t r = 0; r < order.size(); ++r)
+        rank[size_t(order[r])] = int(r), sorted.push_back(s.parts[size_t(order[r])]);
     for (int& l : s.labels)
         if (l >= 0) l = rank[size_t(l)];
     s.parts = std::move(sorted);

@@ -24,13 +24,13 @@ struct SurveyPart {
 };
 
 struct LobeSurvey {
-    double peak = 0;             ///< largest lobe value over the visible hemisphere (0: no highlight)
+    double peak = 0;  ///< largest lobe value over the visible hemisphere (0: no highlight)
     dvec3 peakDirection{0, 0, 1};
     dvec2 peakUV{0.0};           ///< the peak in the scene's chart
     bool peakOnHorizon = false;  ///< the lobe still rises toward the horizon there: the peak is its limit
     /// the lobe grows without bound toward the horizon there (G = 1: f ~ 1 / cos theta_o): no peak, no region
     bool unbounded = false;
-    double level = 0;            ///< frac * peak: the region's threshold
+    double level = 0;               ///< frac * peak: the region's threshold
     std::vector<SurveyPart> parts;  ///< the part holding the peak first, then by decreasing maxValue
 
     /// The part whose survey samples lie nearest `we` (within two grid steps), or -1.
@@ -44,8 +44,8 @@ struct LobeSurvey {
     int azimuths = 0;
     double azimuth0Deg = 0;
     std::vector<int> labels;
-    std::vector<double> values;      ///< the samples' lobe values
-    std::vector<dvec3> directions;   ///< and directions
+    std::vector<double> values;     ///< the samples' lobe values
+    std::vector<dvec3> directions;  ///< and directions
 };
 
 /// Azimuths of the survey grid (29 rings x 72: about 2100 twin evaluations, plus the peak's climbs).

@@ -3,15 +3,15 @@
 
 #include "measurement/measure_bumps.hpp"
 
+#include "analysis/supersample.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
-#include "measurement/diagnose.hpp"
-#include "analysis/supersample.hpp"
-#include "render/cpu_view.hpp"
-#include "measurement/peak_frame.hpp"
-#include "measurement/lobe_survey.hpp"
 #include "measurement/blind_framing.hpp"
+#include "measurement/diagnose.hpp"
 #include "measurement/framing.hpp"
+#include "measurement/lobe_survey.hpp"
+#include "measurement/peak_frame.hpp"
+#include "render/cpu_view.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -113,7 +113,7 @@ void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part);  //
 Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup, Frame& frame, Measurement& m,
              const PartAim* part = nullptr, const std::function<void()>& whileFirstDrawn = {}) {
     thread_local ImageF coarse;  // reused across calls: no allocation per measurement
-    if (!part) {  // a part's frame is seeded from its survey box by the caller
+    if (!part) {                 // a part's frame is seeded from its survey box by the caller
         const double r = twinHalfWidth(scene, setup.options.threshold);
         frame.fovDeg =
             std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(r, 1.3)) / setup.fill)), kMinFovDeg, kMaxFovDeg);
@@ -165,7 +165,7 @@ PixelRect cropOf(const Aim& aim, const PinholeCamera& fine) {
 /// The final render(s) of the frame and their analysis: one render and measureImage, or n x n jittered
 /// renders combined by the Supersampler.
 analysis::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const PixelRect& crop, const MeasureSetup& setup,
-                       Measurement& m, const PartAim* part = nullptr, double level = 0) {
+                        Measurement& m, const PartAim* part = nullptr, double level = 0) {
     thread_local ImageF img;  // reused: the readback never reallocates (4 MB at 512x512)
     const int n = setup.supersample;
     analysis::Options options = setup.options;
@@ -371,8 +371,8 @@ void flagUnbounded(const std::optional<LobeSurvey>& survey, analysis::Shape& sha
 
 Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scene, const MeasureSetup& setup) {
     if (setup.supersample < 1 || setup.supersample > kMaxSupersample)
-        throw InputError("--supersample: must be a whole number in [1, " + std::to_string(kMaxSupersample) +
-                         "] (got " + std::to_string(setup.supersample) + ")");
+        throw InputError("--supersample: must be a whole number in [1, " + std::to_string(kMaxSupersample) + "] (got " +
+                         std::to_string(setup.supersample) + ")");
     const std::optional<LobeSurvey> survey = surveyFor(scene, setup.options.threshold);
     if (survey && !survey->unbounded && survey->parts.size() > 1 && setup.fovDeg <= 0) {
         Measurement m = measureParts(view, scene, setup, *survey);
@@ -408,7 +408,6 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
 }
 
 }  // namespace
-
 
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup) {
     // No CPU twin (a .brdf file): framed from coarse renders alone, error from resolution convergence.

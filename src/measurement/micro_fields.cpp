@@ -1,10 +1,10 @@
 #include "measurement/micro_fields.hpp"
 
-#include "measurement/measure_bumps.hpp"
 #include "hilite/measurement/row.hpp"
+#include "measurement/measure_bumps.hpp"
 #include "measurement/prefilter_check.hpp"
-#include "render/bump_moments.hpp"
 #include "micro/masking.hpp"
+#include "render/bump_moments.hpp"
 #include "render/bumps.hpp"
 
 #include <cmath>
@@ -27,8 +27,8 @@ double num(const nlohmann::json& r, const char* k) { return rowNumber(r, k); }
 
 }  // namespace
 
-void addMicroFields(nlohmann::json& row, const render::Scene& s, const Measurement& m, double threshold,
-                    int width, int height) {
+void addMicroFields(nlohmann::json& row, const render::Scene& s, const Measurement& m, double threshold, int width,
+                    int height) {
     const PinholeCamera cam = measurementCamera(s, m.center, m.fovDeg, width, height);
     row["bump_filter"] = render::toString(s.surface.filter);
     row["bump_filter_used"] = render::usesMoments(s, cam) ? "moments" : "supersample";
@@ -61,8 +61,8 @@ void addPrefilterFields(nlohmann::json& row, render::Renderer& renderer, const r
     const double a = num(row, "analytic_aspect"), amaj = num(row, "analytic_major_deg"),
                  amin = num(row, "analytic_minor_deg");
     auto put = [&](const std::string& key, double v) { row[key] = std::isfinite(v) ? nlohmann::json(v) : nullptr; };
-    for (const auto& [prefix, shape] : {std::pair<std::string, const analysis::Shape*>{"prefilter", &c.moments},
-                                        {"next_seed", &c.nextSeed}}) {
+    for (const auto& [prefix, shape] :
+         {std::pair<std::string, const analysis::Shape*>{"prefilter", &c.moments}, {"next_seed", &c.nextSeed}}) {
         put(prefix + "_aspect", shape->aspect);
         put(prefix + "_aspect_minus_analytic", shape->aspect - a);
         put(prefix + "_major_over_analytic", shape->major_deg / amaj);

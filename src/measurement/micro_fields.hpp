@@ -16,8 +16,8 @@ namespace hilite::measurement {
 /// _minor_deg: the CPU reference of the same NDF and Fresnel with implicit G under a point-like light), the
 /// differences, and the realised slope statistics (slope_rms, slope_ks).
 /// bump_filter_used: supersample or moments (the render's resolved --bump-filter, at `width` x `height`).
-void addMicroFields(nlohmann::json& row, const render::Scene& s, const Measurement& m, double threshold,
-                    int width, int height);
+void addMicroFields(nlohmann::json& row, const render::Scene& s, const Measurement& m, double threshold, int width,
+                    int height);
 
 /// With --prefilter-check, where supersampling runs (the centre pixel needs <= 64 patches per axis): the
 /// moments prefilter and the next seed rendered in the same frame (experiments/prefilter_check.hpp):
@@ -25,7 +25,6 @@ void addMicroFields(nlohmann::json& row, const render::Scene& s, const Measureme
 /// prefilter_error, next_seed_aspect, _major_over_analytic, _minor_over_analytic. Nothing otherwise.
 void addPrefilterFields(nlohmann::json& row, render::Renderer& renderer, const render::Scene& s,
                         const MeasureSetup& setup, const Measurement& m);
-
 
 /// The realised slope statistics of a bump field (computed once per field and cached).
 const micro::SlopeStats& realisedSlopes(const micro::BumpSpec& spec);

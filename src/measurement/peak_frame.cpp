@@ -10,7 +10,9 @@ namespace hilite::measurement {
 
 namespace {
 
-double angleDeg(const dvec3& a, const dvec3& b) { return rad2deg(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b))); }
+double angleDeg(const dvec3& a, const dvec3& b) {
+    return rad2deg(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+}
 
 }  // namespace
 
@@ -37,8 +39,7 @@ std::optional<render::Scene> frameAboutPeak(const render::Scene& scene, double t
     // lobe it sees would move with the frame: both stay about the mirror direction.
     // Without a CPU twin (a .brdf file) there is no lobe to search: blind framing finds its region instead.
     if (!render::hasTwin(scene)) return std::nullopt;
-    if (scene.light.chartCenter || scene.surface.bumps || !scene.light.distant())
-        return std::nullopt;
+    if (scene.light.chartCenter || scene.surface.bumps || !scene.light.distant()) return std::nullopt;
     const LobePeak p = findPeak(scene);
     if (!(p.value > 0) || p.mirrorValue >= threshold * p.value) return std::nullopt;  // wr inside the region
     if (p.offsetDeg <= kFarPeakDeg) return std::nullopt;  // near: the chart about wr measures it undistorted
@@ -65,9 +66,9 @@ std::string framedAbout(const render::Scene& scene, double threshold, double& of
     std::ostringstream s;
     s.precision(4);
     if (p.fromLightDeg < 0.5)
-        s << "peak (retroreflection: toward the light, 2 theta_i = " << p.offsetDeg << " deg from the mirror direction)";
-    else
-        s << "peak (" << p.offsetDeg << " deg from the mirror direction)";
+        s << "peak (retroreflection: toward the light, 2 theta_i = " << p.offsetDeg
+          << " deg from the mirror direction)";
+    else s << "peak (" << p.offsetDeg << " deg from the mirror direction)";
     return s.str();
 }
 

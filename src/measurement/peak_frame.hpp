@@ -25,11 +25,11 @@ constexpr double kFarPeakDeg = 20.0;
 constexpr double kHorizonPeakCos = 0.05;
 
 struct LobePeak {
-    dvec3 direction{0, 0, 1};  ///< exitant direction of the twin's largest lobe value
-    double value = 0;          ///< that value (luminance of the radiance)
-    double mirrorValue = 0;    ///< the lobe at the mirror direction
-    double offsetDeg = 0;      ///< angle between the peak and the mirror direction
-    double fromLightDeg = 0;   ///< angle between the peak and the light direction wi
+    dvec3 direction{0, 0, 1};     ///< exitant direction of the twin's largest lobe value
+    double value = 0;             ///< that value (luminance of the radiance)
+    double mirrorValue = 0;       ///< the lobe at the mirror direction
+    double offsetDeg = 0;         ///< angle between the peak and the mirror direction
+    double fromLightDeg = 0;      ///< angle between the peak and the light direction wi
     bool risesToHorizon = false;  ///< the lobe at half the peak's elevation is no lower: the peak is the horizon
 };
 

@@ -19,9 +19,9 @@ namespace hilite::measurement {
 struct PrefilterCheck {
     analysis::Shape supersampled, moments, nextSeed;  ///< the three renders' highlights
     double blockError = 0, blockNoise = 0, prefilterError = 0;
-    int blocks = 0;                                  ///< blocks compared
-    int unresolvedBlocks = 0;                        ///< highlight blocks left out: supersampling capped there
-    static constexpr int kBlock = 8;                 ///< pixels per block side
+    int blocks = 0;                   ///< blocks compared
+    int unresolvedBlocks = 0;         ///< highlight blocks left out: supersampling capped there
+    static constexpr int kBlock = 8;  ///< pixels per block side
 };
 
 /// Renders `scene` (explicit bumps) in the frame of `m` (its centre and field of view) three ways and compares.

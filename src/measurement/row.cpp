@@ -2,10 +2,10 @@
 
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
+#include "hilite/render/area_light.hpp"
 #include "measurement/micro_fields.hpp"
 #include "measurement/peak_frame.hpp"
 #include "measurement/tolerance.hpp"
-#include "hilite/render/area_light.hpp"
 
 #include <cmath>
 #include <tuple>
@@ -19,11 +19,19 @@ using nlohmann::json;
 json finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 void shapeFields(json& j, const analysis::Shape& r) {
-    for (auto [key, v] : {std::pair{"aspect", r.aspect}, {"eccentricity", r.eccentricity}, {"major_deg", r.major_deg},
-                          {"minor_deg", r.minor_deg}, {"orientation_deg", r.orientation_deg},
-                          {"centroid_u_deg", r.centroid_u_deg}, {"centroid_v_deg", r.centroid_v_deg},
-                          {"fwhm_u_deg", r.fwhm_u_deg}, {"fwhm_v_deg", r.fwhm_v_deg}, {"peak", r.peak},
-                          {"peak_u_deg", r.peak_u_deg}, {"peak_v_deg", r.peak_v_deg}, {"area_deg2", r.area_deg2}})
+    for (auto [key, v] : {std::pair{"aspect", r.aspect},
+                          {"eccentricity", r.eccentricity},
+                          {"major_deg", r.major_deg},
+                          {"minor_deg", r.minor_deg},
+                          {"orientation_deg", r.orientation_deg},
+                          {"centroid_u_deg", r.centroid_u_deg},
+                          {"centroid_v_deg", r.centroid_v_deg},
+                          {"fwhm_u_deg", r.fwhm_u_deg},
+                          {"fwhm_v_deg", r.fwhm_v_deg},
+                          {"peak", r.peak},
+                          {"peak_u_deg", r.peak_u_deg},
+                          {"peak_v_deg", r.peak_v_deg},
+                          {"area_deg2", r.area_deg2}})
         j[key] = finite(v);
     json flags = json::array();
     for (auto fl : r.flags) flags.push_back(analysis::toString(fl));
@@ -33,11 +41,17 @@ void shapeFields(json& j, const analysis::Shape& r) {
     if (!r.parts.empty()) {  // each part's own ellipse, the part holding the peak first
         json parts = json::array();
         for (const analysis::PartShape& p : r.parts)
-            parts.push_back({{"aspect", finite(p.aspect)}, {"eccentricity", finite(p.eccentricity)},
-                             {"major_deg", finite(p.major_deg)}, {"minor_deg", finite(p.minor_deg)},
-                             {"orientation_deg", finite(p.orientation_deg)}, {"centroid_u_deg", finite(p.centroid_u_deg)},
-                             {"centroid_v_deg", finite(p.centroid_v_deg)}, {"area_deg2", finite(p.area_deg2)},
-                             {"horizon_cut", p.horizon_cut}, {"holds_peak", p.holds_peak}, {"measured", p.measured}});
+            parts.push_back({{"aspect", finite(p.aspect)},
+                             {"eccentricity", finite(p.eccentricity)},
+                             {"major_deg", finite(p.major_deg)},
+                             {"minor_deg", finite(p.minor_deg)},
+                             {"orientation_deg", finite(p.orientation_deg)},
+                             {"centroid_u_deg", finite(p.centroid_u_deg)},
+                             {"centroid_v_deg", finite(p.centroid_v_deg)},
+                             {"area_deg2", finite(p.area_deg2)},
+                             {"horizon_cut", p.horizon_cut},
+                             {"holds_peak", p.holds_peak},
+                             {"measured", p.measured}});
         j["parts"] = parts;
     }
 }
@@ -46,8 +60,10 @@ void shapeFields(json& j, const analysis::Shape& r) {
 void errorEstimate(json& j, const Measurement& m, int width, int height) {
     const analysis::Shape &r = m.shape, &h = *m.halfResolution;
     json e;
-    for (auto [key, a, b] : {std::tuple{"aspect", r.aspect, h.aspect}, {"eccentricity", r.eccentricity, h.eccentricity},
-                             {"major_deg", r.major_deg, h.major_deg}, {"minor_deg", r.minor_deg, h.minor_deg},
+    for (auto [key, a, b] : {std::tuple{"aspect", r.aspect, h.aspect},
+                             {"eccentricity", r.eccentricity, h.eccentricity},
+                             {"major_deg", r.major_deg, h.major_deg},
+                             {"minor_deg", r.minor_deg, h.minor_deg},
                              {"centroid_u_deg", r.centroid_u_deg, h.centroid_u_deg},
                              {"centroid_v_deg", r.centroid_v_deg, h.centroid_v_deg}})
         e[key] = std::isfinite(a - b) ? json(std::abs(a - b)) : json(nullptr);
@@ -90,8 +106,9 @@ void tableError(json& j, render::Renderer* renderer, const scene::Resolved& r, c
     const char* keys[4] = {"aspect", "eccentricity", "major_deg", "minor_deg"};
     for (int k = 0; k < 4; ++k) out[keys[k]] = std::isfinite(e[k]) ? json(e[k]) : json(nullptr);
     j["table_error"] = out;
-    j["table_error_from"] = "the same measurement of the table at half its resolution along each axis (even or odd bins interpolated, "
-                           "the larger): the sum over the axes of |full - half|";
+    j["table_error_from"] =
+        "the same measurement of the table at half its resolution along each axis (even or odd bins interpolated, "
+        "the larger): the sum over the axes of |full - half|";
 }
 
 /// The tolerance fields: what was asked, what was chosen, what it is estimated to reach, what it cost.
@@ -124,7 +141,8 @@ json row(const scene::Resolved& r, const Measurement& m, int width, int height, 
                                          render::toString(s.light.type) + " light)"
                                    : std::string("exitant directions (distant light)");
     j["method"] = method;
-    if (s.light.area()) {  // what of the light is integrated, and how well the GL rule (and the cpu path's twin) does it
+    if (s.light
+            .area()) {  // what of the light is integrated, and how well the GL rule (and the cpu path's twin) does it
         j["light_visible"] = s.light.type == render::LightType::Disk
                                  ? render::capVisibleFraction(render::lightCap(s.light, s.light.position()))
                                  : 1.0;  // a sphere above the plane is wholly above every point's horizon
@@ -182,9 +200,9 @@ const std::vector<std::string>& measurementColumns() {
     static const std::vector<std::string> columns = {
         "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg", "centroid_u_deg", "centroid_v_deg",
         "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg", "area_deg2", "cos_incidence", "flags",
-        "components",
-        "renders", "size", "fov_deg", "minor_pixels", "method", "matched_parameter", "brdf_params", "framing", "framing_note",
-        "error_estimate", "error_estimate_from", "table_error", "table_error_from", "render_ms", "measure_ms",
+        "components", "renders", "size", "fov_deg", "minor_pixels", "method", "matched_parameter", "brdf_params",
+        "framing", "framing_note", "error_estimate", "error_estimate_from", "table_error", "table_error_from",
+        "render_ms", "measure_ms",
         // what the highlight is measured about (retroreflection: its peak), a tabulated NDF's factor
         "framed_about", "peak_offset_deg", "ndf_table_normalization",
         // a sphere or disk light: the part of it above the horizon, the GL rule's radiance error (render/area_light.hpp)

@@ -3,8 +3,8 @@
 
 #include "core/install_paths.hpp"
 #include "hilite/core/error.hpp"
-#include "hilite/scene/resolve.hpp"
 #include "hilite/measurement/measure_scene.hpp"
+#include "hilite/scene/resolve.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -14,13 +14,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <csignal>
-#include <cstdlib>
-#include <iostream>
 #include <cerrno>
-#include <cstring>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -55,8 +55,8 @@ std::string probeExecutable() {
     std::vector<std::string> tried;
     for (const std::string& dir : {objectDirectory(), executableDirectory()}) {
         if (dir.empty()) continue;
-        for (const std::string& candidate : {dir + "/hilite-probe", dir + "/../libexec/hilite-probe",
-                                             dir + "/libexec/hilite-probe"}) {
+        for (const std::string& candidate :
+             {dir + "/hilite-probe", dir + "/../libexec/hilite-probe", dir + "/libexec/hilite-probe"}) {
             if (access(candidate.c_str(), X_OK) == 0) return candidate;
             if (std::find(tried.begin(), tried.end(), candidate) == tried.end()) tried.push_back(candidate);
         }
@@ -70,7 +70,8 @@ std::string probeExecutable() {
 }
 
 /// The child's command line: the scene's .brdf, its values and light, nothing else.
-std::vector<std::string> probeArgs(const std::string& exe, const render::Scene& s, const std::string& backend, int gpu) {
+std::vector<std::string> probeArgs(const std::string& exe, const render::Scene& s, const std::string& backend,
+                                   int gpu) {
     std::vector<std::string> a = {exe, "--brdf", s.brdfFile->path};
     for (const std::string& v : brdf_file::valueAssignments(*s.brdfFile)) a.insert(a.end(), {"--param", v});
     a.insert(a.end(), {"--incidence", number(s.light.incidenceDeg), "--azimuth", number(s.light.azimuthDeg),
@@ -85,7 +86,8 @@ std::vector<std::string> probeArgs(const std::string& exe, const render::Scene& 
 bool readUntil(int fd, std::chrono::steady_clock::time_point deadline, std::string& out) {
     char buf[4096];
     for (;;) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
         if (left.count() <= 0) return false;
         pollfd p{fd, POLLIN, 0};
         const int r = poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
@@ -128,7 +130,8 @@ std::string lastLine(const std::string& err) {
     while (end > 0 && std::isspace(static_cast<unsigned char>(err[end - 1]))) --end;
     if (end == 0) return "";
     const size_t begin = err.rfind('\n', end - 1);
-    std::string line = err.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1));
+    std::string line =
+        err.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1));
     for (char& c : line)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
     return line.size() > 200 ? line.substr(0, 200) + "..." : line;

@@ -68,7 +68,7 @@ int chooseSize(const MeasureSetup& base, const Extent& e, double target, int fro
 
 MeasureSetup withSize(MeasureSetup s, int size) {
     s.width = s.height = size;
-    s.fovDeg = 0;          // automatic framing: the model assumes the region fills the frame
+    s.fovDeg = 0;  // automatic framing: the model assumes the region fills the frame
     s.options.subpixel = true;
     s.supersample = 1;
     return s;

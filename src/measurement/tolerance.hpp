@@ -12,16 +12,16 @@ struct ToleranceSetup {
 };
 
 struct ToleranceResult {
-    Measurement measurement;   ///< at the chosen settings
-    MeasureSetup setup;        ///< the chosen settings
-    double errorEstimate = 0;  ///< estimated |aspect - exact aspect| of `measurement`
-    double predictedError = 0; ///< what the error model predicted for the chosen settings before measuring
-    Measurement check;         ///< the finer setting it was checked against
+    Measurement measurement;    ///< at the chosen settings
+    MeasureSetup setup;         ///< the chosen settings
+    double errorEstimate = 0;   ///< estimated |aspect - exact aspect| of `measurement`
+    double predictedError = 0;  ///< what the error model predicted for the chosen settings before measuring
+    Measurement check;          ///< the finer setting it was checked against
     MeasureSetup checkSetup;
-    int rounds = 0;            ///< (measure, check) rounds taken
-    bool met = false;          ///< errorEstimate <= tolerance
-    double total_ms = 0;       ///< wall time of choosing, measuring and checking (prediction included)
-    double startup_ms = 0;     ///< compiling the scene's program first, when this process had not yet
+    int rounds = 0;         ///< (measure, check) rounds taken
+    bool met = false;       ///< errorEstimate <= tolerance
+    double total_ms = 0;    ///< wall time of choosing, measuring and checking (prediction included)
+    double startup_ms = 0;  ///< compiling the scene's program first, when this process had not yet
 };
 
 /// Chooses, measures, checks; escalates when the check finds the error above E (at most a few rounds,

@@ -22,8 +22,8 @@ std::optional<TracedSurface> parseTracedSurface(const std::string& s) {
 }
 
 std::ostream& operator<<(std::ostream& os, const BounceOptions& o) {
-    return os << "surface=" << toString(o.surface) << " paths=" << o.paths << " batches=" << o.batches << " seed=" << o.seed << " step=" << o.stepTexels
-              << " texel";
+    return os << "surface=" << toString(o.surface) << " paths=" << o.paths << " batches=" << o.batches
+              << " seed=" << o.seed << " step=" << o.stepTexels << " texel";
 }
 
 namespace {
@@ -241,10 +241,12 @@ size_t exitBin(double cosTheta_o) {
 
 struct BatchTally {
     long paths = 0, stuck = 0, backHits = 0;
-    std::vector<double> exitCount = std::vector<double>(kExitBins, 0.0), exitEscaped = std::vector<double>(kExitBins, 0.0);
+    std::vector<double> exitCount = std::vector<double>(kExitBins, 0.0),
+                        exitEscaped = std::vector<double>(kExitBins, 0.0);
     std::vector<double> count;                   ///< [order]
     std::vector<std::vector<double>> reflected;  ///< [order][channel]
-    BatchTally(size_t channels) : count(kMaxReportedOrder + 1, 0.0), reflected(kMaxReportedOrder + 1, std::vector<double>(channels, 0.0)) {}
+    BatchTally(size_t channels)
+        : count(kMaxReportedOrder + 1, 0.0), reflected(kMaxReportedOrder + 1, std::vector<double>(channels, 0.0)) {}
     void firstReflection(size_t bin) { exitCount[bin] += 1.0; }
     void leave(int order, const std::vector<double>& w, size_t firstBin) {
         if (order == 1) exitEscaped[firstBin] += 1.0;
@@ -329,7 +331,8 @@ BounceTally summarize(double thetaDeg, const std::vector<BatchTally>& batches, c
             chromas.push_back(brdf::colourOf(r, ch).chroma);
         }
         Estimate e = chromas.size() >= 2 ? estimate(chromas) : Estimate{NAN, NAN};
-        e.value = count > 0 ? t.colour.back().chroma : NAN;  // pooled; the batches' spread as its error (no light: none)
+        e.value =
+            count > 0 ? t.colour.back().chroma : NAN;  // pooled; the batches' spread as its error (no light: none)
         t.chroma.push_back(e);
     }
     t.multiple = perBatch([&](const BatchTally& b) {
@@ -359,7 +362,8 @@ BounceTally summarize(double thetaDeg, const std::vector<BatchTally>& batches, c
     };
     for (int c = 0; c < 3; ++c) t.reflectedRgb.push_back(weighted([&](size_t i) { return ch.rgb[i][c]; }));
     // Luminance of the linear sRGB albedo (the Y row of IEC 61966-2-1), as of any other sRGB albedo.
-    t.reflectedY = weighted([&](size_t i) { return 0.2126 * ch.rgb[i].x + 0.7152 * ch.rgb[i].y + 0.0722 * ch.rgb[i].z; });
+    t.reflectedY =
+        weighted([&](size_t i) { return 0.2126 * ch.rgb[i].x + 0.7152 * ch.rgb[i].y + 0.0722 * ch.rgb[i].z; });
     return t;
 }
 
@@ -415,8 +419,8 @@ BounceTally walkSmithBounces(double m, double thetaDeg, const brdf::ReflectanceC
     const size_t nc = ch.size();
     const auto batches = runBatches(o, nc, [&](Engine& e, BatchTally& tally) {
         std::vector<double> w(nc, 1.0), F(nc);
-        dvec3 wr = -wi;     // the ray's direction, going down at first
-        double hr = 2.0;    // above the surface: C1 = 1
+        dvec3 wr = -wi;   // the ray's direction, going down at first
+        double hr = 2.0;  // above the surface: C1 = 1
         size_t firstBin = 0;
         for (int order = 0;; ++order) {
             hr = sampleHeight(wr, hr, m, e.uniform());

@@ -208,7 +208,9 @@ SlopeStats slopeStats(const BumpField& f) {
     SlopeStats st;
     const int n = f.n;
     const double a = f.spec.roughness;
-    auto comp = [&f, n](int c) { return [&f, n, c](int i, int j) { return double(f.tex0[4 * (size_t(j) * size_t(n) + size_t(i)) + size_t(c)]); }; };
+    auto comp = [&f, n](int c) {
+        return [&f, n, c](int i, int j) { return double(f.tex0[4 * (size_t(j) * size_t(n) + size_t(i)) + size_t(c)]); };
+    };
     st.rmsX = std::sqrt(bilinearMeanSquare(n, comp(0))), st.rmsY = std::sqrt(bilinearMeanSquare(n, comp(1)));
     // The radial CDF of the target: Beckmann 1 - exp(-r^2/m^2), GGX r^2 / (a^2 + r^2).
     auto cdf = [&](double r) {

@@ -27,15 +27,15 @@ double lambdaBeckmannExact(double cosTheta, double m);
 
 struct MaskingRow {
     double thetaDeg = 0;
-    long samples = 0;       ///< facets traced (all), and of those near h
+    long samples = 0;  ///< facets traced (all), and of those near h
     long highlightFacets = 0;
-    double g1 = 0, g1Err = 0;            ///< traced over all facets, and one standard error of the ratio estimate
-    double g1Realized = 0;               ///< cos(theta) / mean(a): Smith's G1 of the realised slopes (no tracing)
-    double g1Smith = 0;                  ///< 1 / (1 + Lambda) with the nominal roughness (exact Beckmann Lambda)
-    double g1h = 0, g1hErr = 0;          ///< traced over the highlight's facets (m near h = n)
-    double g2 = 0, g2Err = 0;            ///< traced, highlight's facets, wi = mirror image of wo
-    double g2Smith = 0;                  ///< height-correlated 1 / (1 + 2 Lambda)
-    double g2Uncorrelated = 0;           ///< separable G1(wi) G1(wo) = 1 / (1 + Lambda)^2
+    double g1 = 0, g1Err = 0;    ///< traced over all facets, and one standard error of the ratio estimate
+    double g1Realized = 0;       ///< cos(theta) / mean(a): Smith's G1 of the realised slopes (no tracing)
+    double g1Smith = 0;          ///< 1 / (1 + Lambda) with the nominal roughness (exact Beckmann Lambda)
+    double g1h = 0, g1hErr = 0;  ///< traced over the highlight's facets (m near h = n)
+    double g2 = 0, g2Err = 0;    ///< traced, highlight's facets, wi = mirror image of wo
+    double g2Smith = 0;          ///< height-correlated 1 / (1 + 2 Lambda)
+    double g2Uncorrelated = 0;   ///< separable G1(wi) G1(wo) = 1 / (1 + Lambda)^2
 };
 
 /// Traces `samples` random facets (seeded) for each exitant angle (azimuth 0). Beckmann fields only

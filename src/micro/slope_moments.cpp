@@ -53,7 +53,8 @@ SlopeMoments makeSlopeMoments(const BumpField& f) {
                 for (int c = 0; c < 5; ++c) {
                     auto at = [&](int x, int y) { return cur[5 * (size_t(y) * size_t(side) + size_t(x)) + size_t(c)]; };
                     next[5 * (size_t(j) * size_t(half) + size_t(i)) + size_t(c)] =
-                        0.25 * (at(2 * i, 2 * j) + at(2 * i + 1, 2 * j) + at(2 * i, 2 * j + 1) + at(2 * i + 1, 2 * j + 1));
+                        0.25 *
+                        (at(2 * i, 2 * j) + at(2 * i + 1, 2 * j) + at(2 * i, 2 * j + 1) + at(2 * i + 1, 2 * j + 1));
                 }
         cur = std::move(next);
     }

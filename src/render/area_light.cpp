@@ -1,8 +1,8 @@
 #include "hilite/render/area_light.hpp"
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "core/quadrature.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <algorithm>
 #include <cmath>

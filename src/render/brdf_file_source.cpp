@@ -105,7 +105,8 @@ std::string brdfBuildError(const brdf_file::BrdfFile& f, const ProgramSources& s
         static const std::regex quoted("`(\\w+)'");
         const std::set<std::string> reserved = reservedNames(src, f.path);
         for (std::sregex_iterator it(line.begin(), line.end(), quoted), end; it != end; ++it)
-            if (reserved.count((*it)[1])) return " ('" + (*it)[1].str() + "' is a name of hilite's shader: rename it in the .brdf)";
+            if (reserved.count((*it)[1]))
+                return " ('" + (*it)[1].str() + "' is a name of hilite's shader: rename it in the .brdf)";
         return std::string();
     };
     if (!inFile.empty()) {

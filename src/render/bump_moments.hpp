@@ -4,8 +4,8 @@
 // supersampled patches, and the choice between the two (BumpFilter).
 
 #include "hilite/core/camera.hpp"
-#include "micro/slope_moments.hpp"
 #include "hilite/render/scene.hpp"
+#include "micro/slope_moments.hpp"
 
 namespace hilite::render {
 

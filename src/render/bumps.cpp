@@ -1,8 +1,8 @@
 #include "render/bumps.hpp"
 
 #include "hilite/brdf/evaluate.hpp"
-#include "render/bump_moments.hpp"
 #include "hilite/core/error.hpp"
+#include "render/bump_moments.hpp"
 #include "render/shader_source.hpp"
 
 #include <glad/gl.h>
@@ -90,7 +90,10 @@ std::vector<unsigned> fieldTextures(const micro::BumpField& f) {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, f.n, f.n, 0, GL_RGBA, GL_FLOAT,
-                     (k == 0 ? f.tex0 : k == 1 ? f.tex1 : f.tex2).data());
+                     (k == 0   ? f.tex0
+                      : k == 1 ? f.tex1
+                               : f.tex2)
+                         .data());
     }
     return ids;
 }
@@ -142,8 +145,8 @@ void BumpTextures::bind(const gl::Program& prog, const Scene& scene, const Pinho
 namespace {
 
 /// Twin of bumpGlint() in shaders/micro.glsl: one Gaussian mirror patch under the soft sun.
-double bumpGlint(const dvec3& we, const dvec3& wi, const dvec2& s, const double J[4], const double Sx[3],
-                 double sigma, double& VoM) {
+double bumpGlint(const dvec3& we, const dvec3& wi, const dvec2& s, const double J[4], const double Sx[3], double sigma,
+                 double& VoM) {
     const dvec3 nU(-s.x, -s.y, 1.0);
     const double len = glm::length(nU);
     const dvec3 m = nU / len;
@@ -199,8 +202,8 @@ dvec3 bumpPixelRadiance(const Scene& scene, const PinholeCamera& cam, int ix, in
         return l > 0.0 ? (l * scene.light.irradiance) * brdf::fresnel(scene.brdf, VoH) : dvec3(0.0);
     }
     const int S = okx && oky ? bumpSamples(scene.surface, std::max(glm::length(ax), glm::length(ay)) / period)
-                 : scene.surface.samples > 0 ? scene.surface.samples
-                                             : kMaxBumpSamples;
+                  : scene.surface.samples > 0 ? scene.surface.samples
+                                              : kMaxBumpSamples;
     const dvec2 a = ax / (S * tile), b = ay / (S * tile);
     const double Sx[3] = {(a.x * a.x + b.x * b.x) / 12.0, (a.x * a.y + b.x * b.y) / 12.0,
                           (a.y * a.y + b.y * b.y) / 12.0};

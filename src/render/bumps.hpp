@@ -2,8 +2,8 @@
 // The explicit micro-geometry render: GL resources and uniforms of the bump field, and the CPU
 // double twin of the shader's bumpRadiance(). See shaders/micro.glsl (BumpGlint) for the physics.
 
-#include "hilite/core/camera.hpp"
 #include "gl/program.hpp"
+#include "hilite/core/camera.hpp"
 #include "hilite/micro/bump_field.hpp"
 #include "hilite/render/scene.hpp"
 

@@ -1,14 +1,14 @@
 #include "render/renderer.hpp"
 
 #include "brdf/energy.hpp"
-#include "hilite/render/area_light.hpp"
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
-#include "render/bumps.hpp"
-#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/error.hpp"
+#include "hilite/render/area_light.hpp"
 #include "render/brdf_file_source.hpp"
+#include "render/bumps.hpp"
 
 #include <glad/gl.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -16,8 +16,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <ostream>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 
 namespace hilite::render {
 
@@ -30,11 +30,13 @@ std::ostream& operator<<(std::ostream& os, const Scene& s) {
     }
     const Light& l = s.light;
     os << " light=" << toString(l.type) << " incidence=" << l.incidenceDeg << " azimuth=" << l.azimuthDeg;
-    if (l.area()) os << " rings=" << (l.rings > 0 ? std::to_string(l.rings) : "auto") << " rule_target=" << l.ruleTarget;
+    if (l.area())
+        os << " rings=" << (l.rings > 0 ? std::to_string(l.rings) : "auto") << " rule_target=" << l.ruleTarget;
     if (l.type == LightType::Sphere) os << " light_radius=" << l.radius;
     if (l.type == LightType::Disk) os << " light_angle=" << l.angleDeg;
     if (!l.distant())
-        return os << " intensity=" << l.intensity << " light_distance=" << l.distance << " eye_distance=" << s.eyeDistance;
+        return os << " intensity=" << l.intensity << " light_distance=" << l.distance
+                  << " eye_distance=" << s.eyeDistance;
     return os << " irradiance=" << l.irradiance;
 }
 
@@ -62,7 +64,9 @@ std::string lightDefine(LightType light) {
 }
 
 /// The program cache's key suffix of the light.
-std::string lightKey(LightType light) { return light == LightType::Directional ? "" : std::string("+") + toString(light) + "Light"; }
+std::string lightKey(LightType light) {
+    return light == LightType::Directional ? "" : std::string("+") + toString(light) + "Light";
+}
 
 }  // namespace
 
@@ -76,7 +80,8 @@ std::string describeLight(const Scene& scene) {
             s << "sphere light of radius " << l.radius << " (radiance I / (pi R^2), integrated over its cap per point)";
             break;
         case LightType::Disk:
-            s << "disk light of angular radius " << l.angleDeg << " deg (radiance E / (pi sin^2 delta), integrated over "
+            s << "disk light of angular radius " << l.angleDeg
+              << " deg (radiance E / (pi sin^2 delta), integrated over "
               << "its cap)";
             break;
     }
@@ -116,11 +121,12 @@ std::vector<std::string> activeEffects(const Scene& scene) {
         const brdf::merl::MeasuredBrdf& m = *scene.brdf.measured;
         std::ostringstream s;
         s << "measured MERL table " << m.path << ": 90 x 90 x 180 bins (theta_h, theta_d, phi_d), cubic in theta_h "
-          << "and linear in theta_d, phi_d between bin centres (multilinear where a bin lacks data), " << m.noData << " bins without data (their weight renormalized away); no "
+          << "and linear in theta_d, phi_d between bin centres (multilinear where a bin lacks data), " << m.noData
+          << " bins without data (their weight renormalized away); no "
           << "analytic lobe, Fresnel, geometry or diffuse term";
         out.insert(out.begin(), s.str());
     }
-    if (scene.brdf.energy) out.push_back(brdf::describeEnergy(scene.brdf));  // the albedo tables behind the terms
+    if (scene.brdf.energy) out.push_back(brdf::describeEnergy(scene.brdf));   // the albedo tables behind the terms
     if (scene.brdf.model == brdf::Model::Tabulated && scene.brdf.ndfTable) {  // What the table became
         const brdf::NdfTable& t = *scene.brdf.ndfTable;
         std::ostringstream s;
@@ -165,9 +171,7 @@ std::string secondsText(double s) {
     return buf;
 }
 
-void set3(const gl::Program& p, const char* name, const dvec3& v) {
-    p.set(name, float(v.x), float(v.y), float(v.z));
-}
+void set3(const gl::Program& p, const char* name, const dvec3& v) { p.set(name, float(v.x), float(v.y), float(v.z)); }
 
 /// The area light's rule and cap (shade.frag, HILITE_LIGHT_SPHERE / HILITE_LIGHT_DISK): the rings and their
 /// nodes and weights, the radiance L and the cap's size, all computed in double here.
@@ -204,8 +208,7 @@ Renderer::~Renderer() {
 }
 
 const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightType light, bool bumps) {
-    const std::string key =
-        effectKey(p, out) + lightKey(light) + (bumps ? "+bumps" : "");
+    const std::string key = effectKey(p, out) + lightKey(light) + (bumps ? "+bumps" : "");
     auto it = m_programs.find(key);
     if (it != m_programs.end()) return *it->second;
     const ProgramSources src = programSources(p, out, light, m_shaderDir, bumps);
@@ -288,8 +291,8 @@ void Renderer::draw(const Scene& scene, const PinholeCamera& camera, Output out,
 
 void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const PinholeCamera& camera, dvec2 jitter,
                         const PixelRect& crop) {
-    if (!crop.empty() && (crop.x < 0 || crop.y < 0 || crop.x + crop.width > camera.width ||
-                          crop.y + crop.height > camera.height))
+    if (!crop.empty() &&
+        (crop.x < 0 || crop.y < 0 || crop.x + crop.width > camera.width || crop.y + crop.height > camera.height))
         throw std::logic_error("Renderer::draw: crop outside the image");
     gl::Framebuffer& fbo = framebuffer(camera.width, camera.height);
     fbo.bind();

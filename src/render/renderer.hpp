@@ -2,11 +2,11 @@
 // Renders the plane through a pinhole camera into the float framebuffer and reads it back.
 // Programs are compiled once per effect set and reused; the framebuffer is reused while its size holds.
 
-#include "hilite/core/camera.hpp"
-#include "hilite/core/image.hpp"
 #include "gl/context.hpp"
 #include "gl/framebuffer.hpp"
 #include "gl/program.hpp"
+#include "hilite/core/camera.hpp"
+#include "hilite/core/image.hpp"
 #include "hilite/render/scene.hpp"
 #include "render/shader_source.hpp"
 #include "render/watchdog.hpp"

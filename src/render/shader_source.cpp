@@ -2,11 +2,11 @@
 
 #include "brdf/dispatch.hpp"
 #include "brdf/energy.hpp"
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/ndf.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
 #include "core/install_paths.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
 
 #include <unistd.h>
@@ -50,17 +50,14 @@ std::string findDirectory(const char* env, const std::string& sub, const std::st
     for (const auto& t : tried) list += (list.empty() ? "" : ", ") + t;
     const char* share = std::getenv("HILITE_SHARE_DIR");
     throw SystemError(what + " not found (looked in " + list + "); set HILITE_SHARE_DIR to the folder holding " +
-                      "shaders/ and data/ (<prefix>/share/hilite)" +
-                      (share && *share ? "" : ", which is unset"));
+                      "shaders/ and data/ (<prefix>/share/hilite)" + (share && *share ? "" : ", which is unset"));
 }
 
 }  // namespace
 
 std::string readShaderFile(const std::string& path) { return readFile(path); }
 
-std::string shaderDirectory() {
-    return findDirectory("HILITE_SHADER_DIR", "shaders", "brdf.glsl", "shader files");
-}
+std::string shaderDirectory() { return findDirectory("HILITE_SHADER_DIR", "shaders", "brdf.glsl", "shader files"); }
 
 std::string dataDirectory() {
     // Asked for only when a scene names measured spectra: a missing file is that scene's error (exit 2).
@@ -150,8 +147,7 @@ void microfacetDispatch(std::ostream& s, const brdf::Params& p, const Rows& rows
              "    return vec3(w.x * uTangent.x + w.y * uTangent.y, -w.x * uTangent.y + w.y * uTangent.x, w.z);\n}\n"
              "float distribution(HalfVector hv) {\n    vec3 ht = toTangent(hv.h);\n    return "
           << rows.distribution->glsl << ";\n}\n";
-    else
-        s << "float distribution(HalfVector hv) { return " << rows.distribution->glsl << "; }\n";
+    else s << "float distribution(HalfVector hv) { return " << rows.distribution->glsl << "; }\n";
     if (rows.lambda) s << "float lambda(vec3 w) { return " << rows.lambda->glsl << "; }\n";
     if (rows.fresnel) s << "vec3 fresnel(float VoH) { return " << rows.fresnel->glsl << "; }\n";
     s << "vec3 specular(vec3 wi, vec3 wo) {\n"
@@ -202,10 +198,8 @@ std::string dispatchSource(const brdf::Params& p) {
     if (rows.lobe)
         s << "vec3 specular(vec3 wi, vec3 wo) {\n    " << rows.lobe->setup << "\n    return vec3(" << rows.lobe->glsl
           << ");\n}\n";
-    else if (rows.distribution)
-        microfacetDispatch(s, p, rows);
-    if (rows.multiscatter)
-        s << "vec3 multiscatter(vec3 wi, vec3 wo) { return " << rows.multiscatter->glsl << "; }\n";
+    else if (rows.distribution) microfacetDispatch(s, p, rows);
+    if (rows.multiscatter) s << "vec3 multiscatter(vec3 wi, vec3 wo) { return " << rows.multiscatter->glsl << "; }\n";
     if (rows.diffuse) s << "vec3 diffuse(vec3 wi, vec3 wo) { return " << rows.diffuse->glsl << "; }\n";
     std::vector<std::string> parts;  // the terms present, summed in the order evaluate() sums them
     if (rows.lobe || rows.distribution) parts.push_back("specular(wi, wo)");

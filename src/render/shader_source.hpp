@@ -3,8 +3,8 @@
 // blocks the scene names are copied in, and the dispatch that calls them is generated here, so the
 // program text contains exactly the terms it runs.
 
-#include "hilite/brdf/params.hpp"
 #include "gl/program.hpp"
+#include "hilite/brdf/params.hpp"
 
 #include <map>
 #include <string>

@@ -19,8 +19,8 @@ void Watchdog::arm(double seconds, std::string message, int exitCode) {
     {
         std::lock_guard<std::mutex> lock(m_mutex);
         m_armed = true;
-        m_deadline = std::chrono::steady_clock::now() +
-                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+        m_deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                            std::chrono::duration<double>(seconds));
         m_message = std::move(message);
         m_exitCode = exitCode;
         if (!m_thread.joinable()) m_thread = std::thread([this] { loop(); });

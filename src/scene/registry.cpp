@@ -3,9 +3,9 @@
 #include "brdf/materials.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
-#include "hilite/brdf/params.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
+#include "hilite/brdf/params.hpp"
 #include "hilite/render/area_light.hpp"
 #include "hilite/render/surface.hpp"
 #include "hilite/scene/resolve.hpp"
@@ -18,8 +18,8 @@ namespace hilite::scene {
 
 namespace {
 
-using nlohmann::json;
 using brdf::Model;
+using nlohmann::json;
 
 // ---- What a parameter applies to ----
 
@@ -77,20 +77,67 @@ std::vector<Param> build() {
                  return "measured:" + r.scene.brdf.measured->path.substr(r.scene.brdf.measured->path.rfind('/') + 1);
              return brdf::toString(r.scene.brdf.model);
          }});
-    add({"exponent", T::Material, K::Number, "1000", brdf::kMinExponent, brdf::kMaxExponent, false, false, {}, "",
-         "phong/phong-classic/blinn/retro exponent n", "phong, phong-classic, blinn, retro", usesExponent, "exponent",
+    add({"exponent",
+         T::Material,
+         K::Number,
+         "1000",
+         brdf::kMinExponent,
+         brdf::kMaxExponent,
+         false,
+         false,
+         {},
+         "",
+         "phong/phong-classic/blinn/retro exponent n",
+         "phong, phong-classic, blinn, retro",
+         usesExponent,
+         "exponent",
          [](const Resolved& r) -> json { return r.scene.brdf.exponent; }});
-    add({"roughness", T::Material, K::Number, "0.1", brdf::kMinRoughness, brdf::kMaxRoughness, false, false, {}, "",
+    add({"roughness",
+         T::Material,
+         K::Number,
+         "0.1",
+         brdf::kMinRoughness,
+         brdf::kMaxRoughness,
+         false,
+         false,
+         {},
+         "",
          "beckmann m / ggx alpha / gaussian m in radians (the formulas' symbols; alpha_x if anisotropic): 0 is a "
          "perfect mirror, (0, 1e-7) is raised to 1e-7 with a warning",
-         "beckmann, ggx, gaussian", usesRoughness, "roughness",
+         "beckmann, ggx, gaussian",
+         usesRoughness,
+         "roughness",
          [](const Resolved& r) -> json { return r.scene.brdf.roughness; }});
-    add({"roughness_y", T::Material, K::Number, "", brdf::kMinRoughness, brdf::kMaxRoughness, false, false, {}, "",
-         "anisotropic beckmann/ggx: alpha_y, as --roughness (absent: isotropic)", "anisotropic beckmann, ggx",
-         anisotropic, "roughness_y", [](const Resolved& r) -> json { return r.scene.brdf.alphaY(); }});
-    add({"tangent_angle", T::Material, K::Number, "0", -360, 360, false, false, {}, "deg",
-         "anisotropic (or a .brdf's X, Y): azimuth of the alpha_x axis from +x", "anisotropic beckmann, ggx; .brdf",
-         tangentFrame, "tangent_angle", [](const Resolved& r) -> json { return r.scene.brdf.tangentAngleDeg; }});
+    add({"roughness_y",
+         T::Material,
+         K::Number,
+         "",
+         brdf::kMinRoughness,
+         brdf::kMaxRoughness,
+         false,
+         false,
+         {},
+         "",
+         "anisotropic beckmann/ggx: alpha_y, as --roughness (absent: isotropic)",
+         "anisotropic beckmann, ggx",
+         anisotropic,
+         "roughness_y",
+         [](const Resolved& r) -> json { return r.scene.brdf.alphaY(); }});
+    add({"tangent_angle",
+         T::Material,
+         K::Number,
+         "0",
+         -360,
+         360,
+         false,
+         false,
+         {},
+         "deg",
+         "anisotropic (or a .brdf's X, Y): azimuth of the alpha_x axis from +x",
+         "anisotropic beckmann, ggx; .brdf",
+         tangentFrame,
+         "tangent_angle",
+         [](const Resolved& r) -> json { return r.scene.brdf.tangentAngleDeg; }});
     add({"fresnel", T::Material, K::Choice, "", 0, 0, false, false, brdf::fresnelNames(), "",
          "none (F = 1) | schlick | dielectric | conductor (exact) | spectral (measured metal); default: the "
          "material's, schlick when --f0 is given, else none",
@@ -99,20 +146,66 @@ std::vector<Param> build() {
     add({"material", T::Material, K::Choice, "", 0, 0, false, false, brdf::materialNames(), "",
          "Fresnel preset: " + materials + " (copper, gold: spectral)", "microfacet models", hasMaterial, "material",
          [](const Resolved& r) -> json { return r.values.text("material"); }});
-    add({"spectral_fresnel", T::Material, K::Choice, "table", 0, 0, false, false, {"table", "exact"}, "",
+    add({"spectral_fresnel",
+         T::Material,
+         K::Choice,
+         "table",
+         0,
+         0,
+         false,
+         false,
+         {"table", "exact"},
+         "",
          "table (F over cos theta_d, 512 entries computed in double per metal, linear between them: within 1e-5 of "
          "exact, at the cost of one lookup) | exact (the sum over the wavelengths at every pixel: 81 on the GPU)",
-         "fresnel spectral", spectral, "spectral_fresnel",
+         "fresnel spectral",
+         spectral,
+         "spectral_fresnel",
          [](const Resolved& r) -> json { return r.scene.brdf.spectralTable ? "table" : "exact"; }});
-    add({"eta", T::Material, K::Rgb, "", brdf::kMinEta, brdf::kMaxEta, false, false, {}, "",
+    add({"eta",
+         T::Material,
+         K::Rgb,
+         "",
+         brdf::kMinEta,
+         brdf::kMaxEta,
+         false,
+         false,
+         {},
+         "",
          "dielectric/conductor index eta = n_t/n_i (default: the material's, else 1.5)",
-         "fresnel dielectric, conductor", exactIndex, "eta",
+         "fresnel dielectric, conductor",
+         exactIndex,
+         "eta",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.eta); }});
-    add({"k", T::Material, K::Rgb, "", brdf::kMinK, brdf::kMaxK, false, false, {}, "",
-         "conductor extinction k (default: the material's, else 0)", "fresnel conductor", conductor, "k",
+    add({"k",
+         T::Material,
+         K::Rgb,
+         "",
+         brdf::kMinK,
+         brdf::kMaxK,
+         false,
+         false,
+         {},
+         "",
+         "conductor extinction k (default: the material's, else 0)",
+         "fresnel conductor",
+         conductor,
+         "k",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.k); }});
-    add({"f0", T::Material, K::Rgb, "", 0, 1, false, false, {}, "",
-         "Schlick F0 (default: F(0) of --eta/--k or of the material, else 0.04)", "fresnel schlick", schlick, "f0",
+    add({"f0",
+         T::Material,
+         K::Rgb,
+         "",
+         0,
+         1,
+         false,
+         false,
+         {},
+         "",
+         "Schlick F0 (default: F(0) of --eta/--k or of the material, else 0.04)",
+         "fresnel schlick",
+         schlick,
+         "f0",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.f0); }});
     add({"geometry", T::Material, K::Choice, "implicit", 0, 0, false, false, brdf::geometryNames(), "",
          "none (G = 1) | implicit (G = cos_i cos_o) | cook-torrance (V-cavity) | smith-separable | smith "
@@ -132,165 +225,621 @@ std::vector<Param> build() {
          "albedo <= 1)",
          "built-in models", builtin, "diffuse",
          [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.diffuse); }});
-    add({"albedo", T::Material, K::Rgb, "0.5", 0, 1, false, false, {}, "", "diffuse albedo rho",
-         "diffuse lambert, oren-nayar, coupled", diffuse, "albedo",
+    add({"albedo",
+         T::Material,
+         K::Rgb,
+         "0.5",
+         0,
+         1,
+         false,
+         false,
+         {},
+         "",
+         "diffuse albedo rho",
+         "diffuse lambert, oren-nayar, coupled",
+         diffuse,
+         "albedo",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.albedo); }});
-    add({"sigma", T::Material, K::Number, "20", brdf::kMinSigmaDeg, brdf::kMaxSigmaDeg, false, false, {}, "deg",
-         "oren-nayar facet slope deviation", "diffuse oren-nayar", orenNayar, "sigma",
+    add({"sigma",
+         T::Material,
+         K::Number,
+         "20",
+         brdf::kMinSigmaDeg,
+         brdf::kMaxSigmaDeg,
+         false,
+         false,
+         {},
+         "deg",
+         "oren-nayar facet slope deviation",
+         "diffuse oren-nayar",
+         orenNayar,
+         "sigma",
          [](const Resolved& r) -> json { return r.scene.brdf.sigmaDeg; }});
-    add({"ndf_table", T::Material, K::Path, "", 0, 0, false, false, {}, "",
+    add({"ndf_table",
+         T::Material,
+         K::Path,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "tabulated: CSV of 'theta_h_deg, D' rows (theta_h from 0, increasing, <= 90; D >= 0), linear between rows, "
          "normalized so that int D (n.h) dw = 1 (the factor is reported as ndf_table_normalization)",
-         "model tabulated", tabulated, "ndf_table", [](const Resolved& r) -> json { return r.scene.brdf.ndfTable->file; }});
-    add({"measured", T::Material, K::Path, "", 0, 0, false, false, {}, "",
+         "model tabulated",
+         tabulated,
+         "ndf_table",
+         [](const Resolved& r) -> json { return r.scene.brdf.ndfTable->file; }});
+    add({"measured",
+         T::Material,
+         K::Path,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "a MERL .binary table (90 x 90 x 180, Matusik 2003): the whole BRDF (lobe, F, G, diffuse), looked up "
          "multilinearly; replaces --model and its terms (the row's model says measured:FILE; not with any other "
          "material flag, nor --bumps)",
-         "every scene", measured, "measured", [](const Resolved& r) -> json { return r.scene.brdf.measured->path; }});
-    add({"brdf", T::Material, K::Path, "", 0, 0, false, false, {}, "",
+         "every scene",
+         measured,
+         "measured",
+         [](const Resolved& r) -> json { return r.scene.brdf.measured->path; }});
+    add({"brdf",
+         T::Material,
+         K::Path,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "a BRDF Explorer .brdf file (analytic): its GLSL BRDF() replaces --model and its terms (only "
          "--tangent-angle still applies); no CPU twin, so measure frames blind and estimates its error from "
          "resolution convergence",
-         "every scene", brdfFile, "brdf", [](const Resolved& r) -> json { return r.scene.brdfFile->path; }});
-    add({"param", T::Material, K::List, "", 0, 0, false, false, {}, "",
+         "every scene",
+         brdfFile,
+         "brdf",
+         [](const Resolved& r) -> json { return r.scene.brdfFile->path; }});
+    add({"param",
+         T::Material,
+         K::List,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "a .brdf parameter, NAME=VALUE: float within its declared range, bool 0|1, color V or R,G,B; repeat the "
          "flag or join several with commas (n=100,tint=1,0.5,0.2)",
-         "--brdf", brdfFile, "param", [](const Resolved& r) -> json {
+         "--brdf",
+         brdfFile,
+         "param",
+         [](const Resolved& r) -> json {
              std::vector<std::string> all;
              for (const auto& a : r.values.list("param")) all.push_back(a.text);
              return join(all, ",");
          }});
 
     // ---- [light] ----
-    add({"incidence", T::Light, K::Angles, "45", 0, 90, false, false, {}, "deg",
+    add({"incidence",
+         T::Light,
+         K::Angles,
+         "45",
+         0,
+         90,
+         false,
+         false,
+         {},
+         "deg",
          "angle of incidence theta_i: one angle (60), a list (0,30,60) or a range START:STOP:STEP (0:85:5); render "
          "takes one",
-         "every scene", nullptr, "incidence_deg", [](const Resolved& r) -> json { return r.scene.light.incidenceDeg; }});
-    add({"azimuth", T::Light, K::Number, "0", -360, 360, false, false, {}, "deg", "light azimuth phi_i", "every scene",
-         nullptr, "azimuth_deg", [](const Resolved& r) -> json { return r.scene.light.azimuthDeg; }});
-    add({"light", T::Light, K::Choice, "directional", 0, 0, false, false, {"directional", "point", "sphere", "disk"}, "",
+         "every scene",
+         nullptr,
+         "incidence_deg",
+         [](const Resolved& r) -> json { return r.scene.light.incidenceDeg; }});
+    add({"azimuth",
+         T::Light,
+         K::Number,
+         "0",
+         -360,
+         360,
+         false,
+         false,
+         {},
+         "deg",
+         "light azimuth phi_i",
+         "every scene",
+         nullptr,
+         "azimuth_deg",
+         [](const Resolved& r) -> json { return r.scene.light.azimuthDeg; }});
+    add({"light",
+         T::Light,
+         K::Choice,
+         "directional",
+         0,
+         0,
+         false,
+         false,
+         {"directional", "point", "sphere", "disk"},
+         "",
          "directional (distant, irradiance E) | point (intensity I, I cos / d^2) | sphere (radius R, intensity I: "
          "radiance I / (pi R^2)) | disk (distant, angular radius delta, irradiance E: radiance E / (pi sin^2 delta))",
-         "every scene", nullptr, "light", [](const Resolved& r) -> json { return render::toString(r.scene.light.type); }});
-    add({"irradiance", T::Light, K::Number, "1", 0, 1e6, false, false, {}, "",
-         "light irradiance E (normal to the light)", "light directional, disk", distant, "irradiance",
+         "every scene",
+         nullptr,
+         "light",
+         [](const Resolved& r) -> json { return render::toString(r.scene.light.type); }});
+    add({"irradiance",
+         T::Light,
+         K::Number,
+         "1",
+         0,
+         1e6,
+         false,
+         false,
+         {},
+         "",
+         "light irradiance E (normal to the light)",
+         "light directional, disk",
+         distant,
+         "irradiance",
          [](const Resolved& r) -> json { return r.scene.light.irradiance; }});
-    add({"intensity", T::Light, K::Number, "1", 0, 1e12, false, false, {}, "",
-         "point or sphere light intensity I (the sphere's power is the point's, 4 pi I)", "light point, sphere",
-         atDistance, "intensity", [](const Resolved& r) -> json { return r.scene.light.intensity; }});
-    add({"light_distance", T::Light, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
-         "point light (sphere: its centre) distance from the origin", "light point, sphere", atDistance,
-         "light_distance", [](const Resolved& r) -> json { return r.scene.light.distance; }});
-    add({"light_radius", T::Light, K::Number, "0.1", 0, 1e6, true, false, {}, "",
+    add({"intensity",
+         T::Light,
+         K::Number,
+         "1",
+         0,
+         1e12,
+         false,
+         false,
+         {},
+         "",
+         "point or sphere light intensity I (the sphere's power is the point's, 4 pi I)",
+         "light point, sphere",
+         atDistance,
+         "intensity",
+         [](const Resolved& r) -> json { return r.scene.light.intensity; }});
+    add({"light_distance",
+         T::Light,
+         K::Number,
+         "10",
+         1e-3,
+         1e6,
+         false,
+         false,
+         {},
+         "",
+         "point light (sphere: its centre) distance from the origin",
+         "light point, sphere",
+         atDistance,
+         "light_distance",
+         [](const Resolved& r) -> json { return r.scene.light.distance; }});
+    add({"light_radius",
+         T::Light,
+         K::Number,
+         "0.1",
+         0,
+         1e6,
+         true,
+         false,
+         {},
+         "",
          "sphere radius R, below its centre's height light_distance x cos(incidence) (a sphere that reaches the "
          "plane is refused)",
-         "light sphere", sphere, "light_radius", [](const Resolved& r) -> json { return r.scene.light.radius; }});
-    add({"light_angle", T::Light, K::Number, "0.266", 0, 90, true, true, {}, "deg",
+         "light sphere",
+         sphere,
+         "light_radius",
+         [](const Resolved& r) -> json { return r.scene.light.radius; }});
+    add({"light_angle",
+         T::Light,
+         K::Number,
+         "0.266",
+         0,
+         90,
+         true,
+         true,
+         {},
+         "deg",
          "disk angular radius delta (the sun: 0.266); a disk that reaches below the horizon is integrated over "
          "its visible part (light_visible says how much)",
-         "light disk", disk, "light_angle", [](const Resolved& r) -> json { return r.scene.light.angleDeg; }});
-    add({"light_rings", T::Light, K::Integer, "auto", 1, render::kMaxRings, false, false, {}, "",
+         "light disk",
+         disk,
+         "light_angle",
+         [](const Resolved& r) -> json { return r.scene.light.angleDeg; }});
+    add({"light_rings",
+         T::Light,
+         K::Integer,
+         "auto",
+         1,
+         render::kMaxRings,
+         false,
+         false,
+         {},
+         "",
          "sphere, disk: the GL rule over the light, n rings (Gauss-Legendre in 1 - cos) x 4n azimuths = 4n^2 "
          "points per pixel; auto: the fewest rings whose radiance error against the exact integral is within 1e-3 "
          "of the peak (tolerance / 4 with --tolerance)",
-         "light sphere, disk", area, "light_rings", [](const Resolved& r) -> json { return render::lightRings(r.scene); }});
+         "light sphere, disk",
+         area,
+         "light_rings",
+         [](const Resolved& r) -> json { return render::lightRings(r.scene); }});
     p.back().automatic = "auto";
 
     // ---- [camera] ----
-    add({"size", T::Camera, K::Size, "512", 1, 16384, false, false, {}, "px", "image size: PX or WxH", "every scene",
-         nullptr, "", nullptr});  // the row's size is the one rendered (measurement field `size`)
-    add({"fov", T::Camera, K::Number, "auto", 0, 179, true, false, {}, "deg",
+    add({"size",
+         T::Camera,
+         K::Size,
+         "512",
+         1,
+         16384,
+         false,
+         false,
+         {},
+         "px",
+         "image size: PX or WxH",
+         "every scene",
+         nullptr,
+         "",
+         nullptr});  // the row's size is the one rendered (measurement field `size`)
+    add({"fov",
+         T::Camera,
+         K::Number,
+         "auto",
+         0,
+         179,
+         true,
+         false,
+         {},
+         "deg",
          "field of view across the width; auto: the view's default (render: 30 measure, 40 photo) or automatic "
          "framing (measure); a number: that field of view (measure: fixed framing, at most 160)",
-         "fixed framing", fixedFraming, "fov", [](const Resolved& r) -> json { return r.fovDeg; }});
+         "fixed framing",
+         fixedFraming,
+         "fov",
+         [](const Resolved& r) -> json { return r.fovDeg; }});
     p.back().automatic = "auto";
-    add({"view", T::Camera, K::Choice, "measure", 0, 0, false, false, {"measure", "photo"}, "",
+    add({"view",
+         T::Camera,
+         K::Choice,
+         "measure",
+         0,
+         0,
+         false,
+         false,
+         {"measure", "photo"},
+         "",
          "render: measure (camera on the mirror direction) | photo (looking across the plane); measure always "
          "uses the measurement view",
-         "render", nullptr, "", nullptr});
-    add({"elevation", T::Camera, K::Number, "auto", 0, 90, false, false, {}, "deg",
+         "render",
+         nullptr,
+         "",
+         nullptr});
+    add({"elevation",
+         T::Camera,
+         K::Number,
+         "auto",
+         0,
+         90,
+         false,
+         false,
+         {},
+         "deg",
          "photo view: camera elevation; auto: 90 - incidence, at least 0.5 (0: the plane seen edge-on)",
-         "render --view photo", nullptr, "", nullptr});
+         "render --view photo",
+         nullptr,
+         "",
+         nullptr});
     p.back().automatic = "auto";
-    add({"distance", T::Camera, K::Number, "10", 1e-3, 1e6, false, false, {}, "",
+    add({"distance",
+         T::Camera,
+         K::Number,
+         "10",
+         1e-3,
+         1e6,
+         false,
+         false,
+         {},
+         "",
          "eye distance from the origin (photo view; measurement view under a point or sphere light)",
-         "light point, sphere; photo view", atDistance, "distance", [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
+         "light point, sphere; photo view",
+         atDistance,
+         "distance",
+         [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
     add({"gl_backend", T::Camera, K::Choice, "", 0, 0, false, false, gl::backendNames(), "",
          "auto (a GPU through EGL device if there is one, else osmesa, else egl) | osmesa | egl (surfaceless) | "
          "egl-device (EGL_EXT_platform_device: --gpu N, default the first GPU, else Mesa's software device) "
          "(default: $HILITE_GL_BACKEND, else auto)",
          "GL renders", nullptr, "", nullptr});
-    add({"gpu", T::Camera, K::Integer, "", 0, 1023, false, false, {}, "",  // the devices' range: resolve.cpp gpuIndex
+    add({"gpu",
+         T::Camera,
+         K::Integer,
+         "",
+         0,
+         1023,
+         false,
+         false,
+         {},
+         "",  // the devices' range: resolve.cpp gpuIndex
          "egl-device (or auto): the index of the EGL device to render on, below the number of devices EGL lists "
          "(default: the first that is not Mesa's software device, else 0)",
-         "--gl-backend egl-device, auto", nullptr, "", nullptr});
-    add({"shader_timeout", T::Camera, K::Number, "10", 1e-3, 3600, false, false, {}, "s",
+         "--gl-backend egl-device, auto",
+         nullptr,
+         "",
+         nullptr});
+    add({"shader_timeout",
+         T::Camera,
+         K::Number,
+         "10",
+         1e-3,
+         3600,
+         false,
+         false,
+         {},
+         "s",
          "seconds a .brdf shader may take on a probe render in a child process, and on each compile and draw, "
          "before it is stopped (exit 2)",
-         "--brdf", nullptr, "", nullptr});
+         "--brdf",
+         nullptr,
+         "",
+         nullptr});
 
     // ---- [surface] ----
-    add({"bumps", T::Surface, K::Choice, "none", 0, 0, false, false, {"none", "explicit"}, "",
+    add({"bumps",
+         T::Surface,
+         K::Choice,
+         "none",
+         0,
+         0,
+         false,
+         false,
+         {"none", "explicit"},
+         "",
          "none (flat: the analytic BRDF) | explicit (the material's beckmann/ggx NDF as a seeded bump field of "
          "mirror facets, lit by a soft sun)",
-         "every scene", nullptr, "bumps", [](const Resolved& r) -> json { return r.scene.surface.bumps ? "explicit" : "none"; }});
-    add({"bump_period_px", T::Surface, K::Number, "4", render::kMinBumpPeriodPx, render::kMaxBumpPeriodPx, false,
-         false, {}, "px", "bump period in pixels of the view (at the image centre, across it)", "bumps explicit",
-         bumps, "bump_period_px", [](const Resolved& r) -> json { return r.scene.surface.bumpPeriodPx; }});
-    add({"bump_seed", T::Surface, K::Integer, "1", 0, 9007199254740992.0, false, false, {}, "",
-         "seed of the bump field", "bumps explicit", bumps, "bump_seed",
+         "every scene",
+         nullptr,
+         "bumps",
+         [](const Resolved& r) -> json { return r.scene.surface.bumps ? "explicit" : "none"; }});
+    add({"bump_period_px",
+         T::Surface,
+         K::Number,
+         "4",
+         render::kMinBumpPeriodPx,
+         render::kMaxBumpPeriodPx,
+         false,
+         false,
+         {},
+         "px",
+         "bump period in pixels of the view (at the image centre, across it)",
+         "bumps explicit",
+         bumps,
+         "bump_period_px",
+         [](const Resolved& r) -> json { return r.scene.surface.bumpPeriodPx; }});
+    add({"bump_seed",
+         T::Surface,
+         K::Integer,
+         "1",
+         0,
+         9007199254740992.0,
+         false,
+         false,
+         {},
+         "",
+         "seed of the bump field",
+         "bumps explicit",
+         bumps,
+         "bump_seed",
          [](const Resolved& r) -> json { return r.scene.surface.seed; }});
-    add({"bump_samples", T::Surface, K::Integer, "0", 0, render::kMaxBumpSamples, false, false, {}, "",
-         "sub-pixel patches per axis; 0 = automatic (4 per bump period across the footprint)", "bumps explicit",
-         bumps, "bump_samples", [](const Resolved& r) -> json { return r.scene.surface.samples; }});
-    add({"sun", T::Surface, K::Number, "0.1", render::kMinSunDeg, render::kMaxSunDeg, false, false, {}, "deg",
-         "the light's angular standard deviation per axis (Gaussian sun)", "bumps explicit", bumps, "sun",
+    add({"bump_samples",
+         T::Surface,
+         K::Integer,
+         "0",
+         0,
+         render::kMaxBumpSamples,
+         false,
+         false,
+         {},
+         "",
+         "sub-pixel patches per axis; 0 = automatic (4 per bump period across the footprint)",
+         "bumps explicit",
+         bumps,
+         "bump_samples",
+         [](const Resolved& r) -> json { return r.scene.surface.samples; }});
+    add({"sun",
+         T::Surface,
+         K::Number,
+         "0.1",
+         render::kMinSunDeg,
+         render::kMaxSunDeg,
+         false,
+         false,
+         {},
+         "deg",
+         "the light's angular standard deviation per axis (Gaussian sun)",
+         "bumps explicit",
+         bumps,
+         "sun",
          [](const Resolved& r) -> json { return r.scene.surface.sunDeg; }});
-    add({"bump_filter", T::Surface, K::Choice, "auto", 0, 0, false, false, {"auto", "supersample", "moments"}, "",
+    add({"bump_filter",
+         T::Surface,
+         K::Choice,
+         "auto",
+         0,
+         0,
+         false,
+         false,
+         {"auto", "supersample", "moments"},
+         "",
          "how a pixel integrates its bumps: supersample (Gaussian mirror patches) | moments (the footprint's "
          "realised slope moments, LEAN mapping: a prefilter; beckmann bumps) | auto (supersample while the centre "
          "pixel needs <= 64 patches per axis, moments beyond; ggx bumps: always supersample)",
-         "bumps explicit", bumps, "bump_filter",
+         "bumps explicit",
+         bumps,
+         "bump_filter",
          [](const Resolved& r) -> json { return render::toString(r.scene.surface.filter); }});
-    add({"prefilter_check", T::Surface, K::Switch, "false", 0, 0, false, false, {}, "",
+    add({"prefilter_check",
+         T::Surface,
+         K::Switch,
+         "false",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "measure also renders the same frame with the moments prefilter and with the next seed, and reports the "
          "prefilter's error against supersampling (prefilter_* fields)",
-         "bumps explicit", bumps, "prefilter_check",
+         "bumps explicit",
+         bumps,
+         "prefilter_check",
          [](const Resolved& r) -> json { return r.scene.surface.prefilterCheck; }});
 
     // ---- [measurement] ----
-    add({"threshold", T::Measurement, K::Number, "0.5", 0, 1, true, true, {}, "",
-         "region = lobe >= FRAC x peak", "every measurement", nullptr, "threshold",
+    add({"threshold",
+         T::Measurement,
+         K::Number,
+         "0.5",
+         0,
+         1,
+         true,
+         true,
+         {},
+         "",
+         "region = lobe >= FRAC x peak",
+         "every measurement",
+         nullptr,
+         "threshold",
          [](const Resolved& r) -> json { return r.setup.options.threshold; }});
-    add({"min_pixels", T::Measurement, K::Integer, "8", 1, 100000, false, false, {}, "px",
-         "under_resolved below this many pixels across the minor axis", "every measurement", nullptr, "min_pixels",
+    add({"min_pixels",
+         T::Measurement,
+         K::Integer,
+         "8",
+         1,
+         100000,
+         false,
+         false,
+         {},
+         "px",
+         "under_resolved below this many pixels across the minor axis",
+         "every measurement",
+         nullptr,
+         "min_pixels",
          [](const Resolved& r) -> json { return r.setup.options.minPixelsAcross; }});
-    add({"boundary", T::Measurement, K::Choice, "subpixel", 0, 0, false, false, {"subpixel", "pixel"}, "",
-         "subpixel (contour pixels count their covered fraction) | pixel (in/out)", "every measurement", nullptr,
-         "boundary", [](const Resolved& r) -> json { return r.setup.options.subpixel ? "subpixel" : "pixel"; }});
-    add({"supersample", T::Measurement, K::Integer, "1", 1, 8, false, false, {}, "",
+    add({"boundary",
+         T::Measurement,
+         K::Choice,
+         "subpixel",
+         0,
+         0,
+         false,
+         false,
+         {"subpixel", "pixel"},
+         "",
+         "subpixel (contour pixels count their covered fraction) | pixel (in/out)",
+         "every measurement",
+         nullptr,
+         "boundary",
+         [](const Resolved& r) -> json { return r.setup.options.subpixel ? "subpixel" : "pixel"; }});
+    add({"supersample",
+         T::Measurement,
+         K::Integer,
+         "1",
+         1,
+         8,
+         false,
+         false,
+         {},
+         "",
          "N: render the final frame N x N times with jittered sub-pixel sample points and count each pixel's "
          "covered fraction (replaces --boundary)",
-         "every measurement", nullptr, "supersample", [](const Resolved& r) -> json { return r.setup.supersample; }});
-    add({"renderer", T::Measurement, K::Choice, "gl", 0, 0, false, false, {"gl", "cpu"}, "",
-         "gl (float shader) | cpu (the double-precision twin on every core)", "every measurement", nullptr,
-         "renderer", [](const Resolved& r) -> json { return r.setup.cpu ? "cpu" : "gl"; }});
-    add({"crop", T::Measurement, K::Choice, "on", 0, 0, false, false, {"on", "off"}, "",
+         "every measurement",
+         nullptr,
+         "supersample",
+         [](const Resolved& r) -> json { return r.setup.supersample; }});
+    add({"renderer",
+         T::Measurement,
+         K::Choice,
+         "gl",
+         0,
+         0,
+         false,
+         false,
+         {"gl", "cpu"},
+         "",
+         "gl (float shader) | cpu (the double-precision twin on every core)",
+         "every measurement",
+         nullptr,
+         "renderer",
+         [](const Resolved& r) -> json { return r.setup.cpu ? "cpu" : "gl"; }});
+    add({"crop",
+         T::Measurement,
+         K::Choice,
+         "on",
+         0,
+         0,
+         false,
+         false,
+         {"on", "off"},
+         "",
          "on: automatic framing shades, reads and analyses only the region's box of the final frame (same numbers, "
          "less time) | off: the whole frame",
-         "every measurement", nullptr, "crop", [](const Resolved& r) -> json { return r.setup.crop ? "on" : "off"; }});
-    add({"aim_size", T::Measurement, K::Integer, "64", 16, 1024, false, false, {}, "px",
+         "every measurement",
+         nullptr,
+         "crop",
+         [](const Resolved& r) -> json { return r.setup.crop ? "on" : "off"; }});
+    add({"aim_size",
+         T::Measurement,
+         K::Integer,
+         "64",
+         16,
+         1024,
+         false,
+         false,
+         {},
+         "px",
          "automatic framing: side of the coarse aiming renders that find and zoom onto the region before the final "
          "render (larger: fewer clipped first aims on thin lobes, more time)",
-         "automatic framing", [](const Resolved& r) { return r.fovDeg == 0; }, "aim_size",
+         "automatic framing",
+         [](const Resolved& r) { return r.fovDeg == 0; },
+         "aim_size",
          [](const Resolved& r) -> json { return r.setup.coarseSize; }});
-    add({"tolerance", T::Measurement, K::Number, "", kMinTolerance, kMaxTolerance, false, false, {}, "",
+    add({"tolerance",
+         T::Measurement,
+         K::Number,
+         "",
+         kMinTolerance,
+         kMaxTolerance,
+         false,
+         false,
+         {},
+         "",
          "E: choose the cheapest settings (size, sub-pixel boundary) predicted to reach aspect error E, check them "
          "against the next finer size, report settings, error_estimate and time_ms; --size, --boundary, "
          "--supersample, --fov are chosen, not read",
-         "measure", tolerance, "tolerance", [](const Resolved& r) -> json { return r.tolerance; }});
-    add({"reference", T::Measurement, K::Switch, "false", 0, 0, false, false, {}, "",
-         "use the CPU double-precision reference instead of GL", "measure", nullptr, "", nullptr});
+         "measure",
+         tolerance,
+         "tolerance",
+         [](const Resolved& r) -> json { return r.tolerance; }});
+    add({"reference",
+         T::Measurement,
+         K::Switch,
+         "false",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
+         "use the CPU double-precision reference instead of GL",
+         "measure",
+         nullptr,
+         "",
+         nullptr});
     return p;
 }
 
@@ -387,8 +936,9 @@ std::string markdownTable() {
     };
     std::string t = "| flag | scene key | values | default | applies to | what it sets |\n|---|---|---|---|---|---|\n";
     for (const Param& p : registry())
-        t += "| `" + p.flag() + "` | `" + p.key() + "` | " + escape(p.allowed() + (p.unit.empty() ? "" : " " + p.unit)) +
-             " | " + (p.def.empty() ? "-" : "`" + p.def + "`") + " | " + p.appliesTo + " | " + escape(p.help) + " |\n";
+        t += "| `" + p.flag() + "` | `" + p.key() + "` | " +
+             escape(p.allowed() + (p.unit.empty() ? "" : " " + p.unit)) + " | " +
+             (p.def.empty() ? "-" : "`" + p.def + "`") + " | " + p.appliesTo + " | " + escape(p.help) + " |\n";
     return t;
 }
 
@@ -409,7 +959,8 @@ std::string check(const Param& p, const std::string& text) {
             if (err.empty() && inRange(v)) break;  // the words only for a refusal: check() runs per configuration
             const std::string range = rangeText(p.lo, p.hi, p.openLo, p.openHi);
             const std::string either = p.automatic.empty() ? "" : p.automatic + " or ";
-            if (!err.empty() && !either.empty()) err = "expected " + either + "a number in " + range + " (got '" + text + "')";
+            if (!err.empty() && !either.empty())
+                err = "expected " + either + "a number in " + range + " (got '" + text + "')";
             else if (err.empty()) err = "must be " + either + "a finite number in " + range + " (got " + fmt(v) + ")";
             break;
         }
@@ -434,8 +985,8 @@ std::string check(const Param& p, const std::string& text) {
                 const double v = number(part, err);
                 if (!err.empty()) break;
                 if (!inRange(v)) {
-                    err = "must be a finite number in " + p.allowed().substr(p.allowed().find('[')) +
-                          " (got " + fmt(v) + ")";
+                    err = "must be a finite number in " + p.allowed().substr(p.allowed().find('[')) + " (got " +
+                          fmt(v) + ")";
                     break;
                 }
             }

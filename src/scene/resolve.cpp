@@ -7,8 +7,8 @@
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/spectral.hpp"
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
+#include "hilite/core/error.hpp"
 #include "render/bumps.hpp"
 #include "render/shader_source.hpp"
 
@@ -83,7 +83,8 @@ std::vector<double> Reader::angles(const char* name) const {
         const auto v = parseNumber(t);
         if (!v) throw InputError(w + ": '" + t + "' is not a number");
         if (!std::isfinite(*v) || *v < p.lo || *v > p.hi)
-            throw InputError(w + ": must be a finite number in [" + fmt(p.lo) + ", " + fmt(p.hi) + "] (got " + fmt(*v) + ")");
+            throw InputError(w + ": must be a finite number in [" + fmt(p.lo) + ", " + fmt(p.hi) + "] (got " + fmt(*v) +
+                             ")");
         return *v;
     };
     std::vector<double> out;
@@ -132,8 +133,9 @@ double roughness(const Reader& in, const char* name, bool used) {
     if (!used) return v;
     const std::string w = in.where(name);
     if (v == 0.0)
-        warnOnce(w + " 0 is a perfect mirror: its lobe is a delta no pixel can sample, rendered black and measured "
-                     "as 'mirror'");
+        warnOnce(w +
+                 " 0 is a perfect mirror: its lobe is a delta no pixel can sample, rendered black and measured "
+                 "as 'mirror'");
     if (v > 0.0 && v < brdf::kMinNonzeroRoughness) {
         warnOnce(w + " " + fmt(v) + " raised to " + fmt(brdf::kMinNonzeroRoughness) +
                  ", the narrowest lobe float32 can render (it is already 'effectively_mirror')");
@@ -150,9 +152,9 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
     const bool eta = in.given("eta"), k = in.given("k"), f0 = in.given("f0");
     // An F0 without a named mode asks for Schlick, the only mode that takes one.
     p.fresnel = in.given("fresnel") ? *brdf::parseFresnel(in.text("fresnel"))
-                : mat              ? mat->fresnel
-                : f0               ? Fresnel::Schlick
-                                   : Fresnel::None;
+                : mat               ? mat->fresnel
+                : f0                ? Fresnel::Schlick
+                                    : Fresnel::None;
     if (mat && brdf::hasSpectralData(mat->name)) {
         p.spectrum = brdf::loadSpectrum(render::dataDirectory(), mat->name, spectralStepNm);
         // The metal's RGB stand-ins for the other modes: eta, k at 650 / 550 / 450 nm, F0 = spectral F(0).
@@ -166,7 +168,8 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
         p.eta = mat->eta, p.k = mat->k, p.f0 = mat->f0;
     }
     const std::string fresnelName = brdf::toString(p.fresnel), w = in.where("fresnel");
-    if (mat && mat->fresnel == Fresnel::Schlick && (p.fresnel == Fresnel::Dielectric || p.fresnel == Fresnel::Conductor))
+    if (mat && mat->fresnel == Fresnel::Schlick &&
+        (p.fresnel == Fresnel::Dielectric || p.fresnel == Fresnel::Conductor))
         throw InputError(w + " " + fresnelName + ": " + mat->name + " has an F0 preset only (use schlick)");
     if (mat && mat->fresnel != Fresnel::Dielectric && p.fresnel == Fresnel::Dielectric)
         throw InputError(w + " dielectric: " + mat->name + " is a metal (use conductor, schlick or spectral)");
@@ -179,10 +182,10 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
     if (eta) p.eta = in.rgb("eta");
     if (k) p.k = in.rgb("k");
     if (f0 && p.fresnel != Fresnel::Schlick)
-        throw InputError(in.where("f0") + ": only for --fresnel schlick (--fresnel " + fresnelName +
-                         (p.fresnel == Fresnel::Spectral ? " uses the material's measured eta, k)" : " does not use F0)"));
-    if (f0)
-        p.f0 = in.rgb("f0");
+        throw InputError(
+            in.where("f0") + ": only for --fresnel schlick (--fresnel " + fresnelName +
+            (p.fresnel == Fresnel::Spectral ? " uses the material's measured eta, k)" : " does not use F0)"));
+    if (f0) p.f0 = in.rgb("f0");
     else if (eta || k)  // Schlick's F0 of the index given
         for (int c = 0; c < 3; ++c) p.f0[c] = brdf::F_Conductor(1.0, p.eta[c], p.k[c]);
 }
@@ -240,8 +243,8 @@ brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) 
     p.multiscatter = *brdf::parseMultiscatter(in.text("multiscatter"));
     const bool ms = p.multiscatter != brdf::Multiscatter::None, coupled = p.diffuse == brdf::Diffuse::Coupled;
     if (ms || coupled) {  // the albedo tables of the energy terms, integrated (and cached) here
-        const std::string w = ms ? in.where("multiscatter") + " " + in.text("multiscatter")
-                                 : in.where("diffuse") + " coupled";
+        const std::string w =
+            ms ? in.where("multiscatter") + " " + in.text("multiscatter") : in.where("diffuse") + " coupled";
         try {
             p.energy = brdf::energyTables(p);
         } catch (const std::invalid_argument& e) {
@@ -269,17 +272,21 @@ render::Surface resolveSurface(const Reader& in) {
 /// The scene's cross-parameter rules: what a .brdf file and a bump field can be combined with.
 void checkScene(const Reader& in, const render::Scene& s) {
     if (in.given("param") && !s.brdfFile)
-        throw InputError(in.where("param") + ": only with --brdf FILE (built-in models take --exponent, --roughness, ...)");
+        throw InputError(in.where("param") +
+                         ": only with --brdf FILE (built-in models take --exponent, --roughness, ...)");
     if (!s.surface.bumps) return;
     const std::string w = in.where("bumps");
     if (s.brdf.measured)
-        throw InputError(w + ": the bump field's facets take a slope distribution; a measured table has none "
-                             "(drop --measured or --bumps)");
+        throw InputError(w +
+                         ": the bump field's facets take a slope distribution; a measured table has none "
+                         "(drop --measured or --bumps)");
     if (s.brdfFile)
-        throw InputError(w + ": the bump field's facets are mirrors with a known slope distribution; a .brdf file's "
-                             "BRDF() has none (drop --brdf or --bumps)");
+        throw InputError(w +
+                         ": the bump field's facets are mirrors with a known slope distribution; a .brdf file's "
+                         "BRDF() has none (drop --brdf or --bumps)");
     render::bumpSpec(s);  // the material must have a slope distribution (InputError naming --bumps)
-    if (s.brdf.diffuse != brdf::Diffuse::None) throw InputError(w + ": the bump render is specular only (drop --diffuse)");
+    if (s.brdf.diffuse != brdf::Diffuse::None)
+        throw InputError(w + ": the bump render is specular only (drop --diffuse)");
     if (s.brdf.multiscatter != brdf::Multiscatter::None)
         throw InputError(w + ": the bump render's facets are mirrors lit once (drop --multiscatter)");
     if (s.surface.filter == render::BumpFilter::Moments && s.brdf.model != brdf::Model::Beckmann)
@@ -304,8 +311,9 @@ void checkLight(const Reader& in, const render::Light& l, const std::vector<doub
     if (!l.area()) return;
     const std::string w = in.where("light") + " " + render::toString(l.type);
     if (in.given("brdf"))
-        throw InputError(w + ": not with " + in.where("brdf") + " (a .brdf file has no CPU twin to check the light's "
-                                                               "quadrature against; use a point or directional light)");
+        throw InputError(w + ": not with " + in.where("brdf") +
+                         " (a .brdf file has no CPU twin to check the light's "
+                         "quadrature against; use a point or directional light)");
     if (in.given("bumps") && in.text("bumps") == "explicit")
         throw InputError(w + ": not with --bumps explicit (the bump render is lit by its own Gaussian sun, --sun)");
     if (l.type != render::LightType::Sphere) return;
@@ -343,30 +351,36 @@ void checkMeasurement(const Reader& in, const Resolved& r) {
     if (r.reference && scene.surface.bumps)
         throw InputError("--reference: the CPU reference evaluates the analytic BRDF (drop --bumps explicit)");
     if (r.reference && scene.brdfFile)
-        throw InputError("--reference: no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU); the GL "
-                         "measurement reports error_estimate from resolution convergence instead");
+        throw InputError(
+            "--reference: no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU); the GL "
+            "measurement reports error_estimate from resolution convergence instead");
     if (r.tolerance > 0 && r.reference)
         throw InputError(in.where("tolerance") + ": not with --reference (the reference has no settings to choose)");
     if (scene.brdfFile && r.setup.cpu)
-        throw InputError(in.where("renderer") + " cpu: the CPU path cannot run a .brdf file's GLSL (use --renderer gl)");
+        throw InputError(in.where("renderer") +
+                         " cpu: the CPU path cannot run a .brdf file's GLSL (use --renderer gl)");
     if (scene.brdfFile && r.setup.supersample > 1)
-        throw InputError(in.where("supersample") + ": a .brdf file is framed blind and measured at one sample per "
-                                                   "pixel with the sub-pixel boundary (its error estimate comes from "
-                                                   "resolution convergence)");
+        throw InputError(in.where("supersample") +
+                         ": a .brdf file is framed blind and measured at one sample per "
+                         "pixel with the sub-pixel boundary (its error estimate comes from "
+                         "resolution convergence)");
     if (scene.brdfFile && r.tolerance > 0)
-        throw InputError(in.where("tolerance") + ": needs the CPU twin to estimate errors, which a .brdf file does not "
-                                                 "have (its measurement reports error_estimate from resolution "
-                                                 "convergence instead)");
+        throw InputError(in.where("tolerance") +
+                         ": needs the CPU twin to estimate errors, which a .brdf file does not "
+                         "have (its measurement reports error_estimate from resolution "
+                         "convergence instead)");
     // A bump field renders on the GL path only; the CPU path would silently measure the analytic BRDF instead.
     if (scene.surface.bumps && r.setup.cpu)
-        throw InputError(in.where("renderer") + " cpu: the CPU path renders the analytic BRDF, not a bump field (drop "
-                                                "--bumps explicit, or use --renderer gl)");
+        throw InputError(in.where("renderer") +
+                         " cpu: the CPU path renders the analytic BRDF, not a bump field (drop "
+                         "--bumps explicit, or use --renderer gl)");
     // --tolerance predicts the error of a size from the analytic lobe's convergence; a bump field's image changes
     // with the size itself (its period is set in pixels), so the prediction would not hold.
     if (scene.surface.bumps && r.tolerance > 0)
-        throw InputError(in.where("tolerance") + ": calibrated on analytic lobes; a bump field's render changes with "
-                                                 "the size (--bump-period-px is in pixels): choose --size and "
-                                                 "--bump-samples instead");
+        throw InputError(in.where("tolerance") +
+                         ": calibrated on analytic lobes; a bump field's render changes with "
+                         "the size (--bump-period-px is in pixels): choose --size and "
+                         "--bump-samples instead");
 }
 
 }  // namespace
@@ -380,7 +394,8 @@ Resolved resolve(const Values& values, Purpose purpose) {
     s.brdf = resolveBrdf(in, purpose, r.spectralStepNm);
     r.shaderTimeoutS = in.number("shader_timeout");
     if (s.brdf.measured && in.given("brdf"))  // before reading the .brdf: the combination is the error
-        throw InputError(in.where("measured") + ": not with " + in.where("brdf") + " (each is the whole BRDF: give one)");
+        throw InputError(in.where("measured") + ": not with " + in.where("brdf") +
+                         " (each is the whole BRDF: give one)");
     if (in.given("brdf")) {
         auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(in.text("brdf")));
         for (const auto& a : values.list("param")) {
@@ -411,7 +426,8 @@ Resolved resolve(const Values& values, Purpose purpose) {
     in.size("size", r.setup.width, r.setup.height);
     r.fovDeg = in.numberOrAutomatic("fov").value_or(0.0);  // 0: automatic (the registry refuses a given 0)
     if (purpose == Purpose::Measure && r.fovDeg > 160)
-        throw InputError(in.where("fov") + ": fixed framing takes a field of view in (0, 160] (got " + fmt(r.fovDeg) + ")");
+        throw InputError(in.where("fov") + ": fixed framing takes a field of view in (0, 160] (got " + fmt(r.fovDeg) +
+                         ")");
     r.setup.fovDeg = r.fovDeg;
     r.view = in.text("view") == "photo" ? View::Photo : View::Measure;
     r.elevationDeg = in.numberOrAutomatic("elevation");
@@ -451,7 +467,8 @@ brdf::Params resolveFresnel(Values v, bool spectral) {
     }
     const brdf::Params p = resolve(v, Purpose::Brdf).scene.brdf;
     if (p.fresnel == brdf::Fresnel::None)
-        throw InputError(v.where("fresnel") + ": give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
+        throw InputError(v.where("fresnel") +
+                         ": give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
     return p;
 }
 

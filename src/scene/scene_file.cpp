@@ -1,8 +1,8 @@
 #include "hilite/scene/scene_file.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/files.hpp"
 #include "core/text.hpp"
+#include "hilite/core/error.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -85,8 +85,8 @@ void setKey(Values& out, const std::string& name, const std::string& dottedKey, 
     const std::string section = dottedKey.substr(0, dot);
     const auto table = parseTable(section);
     if (!table)
-        throw InputError(where(name, value) + ": " + dottedKey + ": unknown table '" + section + "' (allowed: " +
-                         join(tableNames()) + ")");
+        throw InputError(where(name, value) + ": " + dottedKey + ": unknown table '" + section +
+                         "' (allowed: " + join(tableNames()) + ")");
     setTableKey(out, name, *table, dottedKey.substr(dot + 1), value);
 }
 
@@ -99,7 +99,8 @@ Values sceneValues(const toml::table& doc, const std::string& name) {
         if (!t || !table) {
             const std::string hint = didYouMean(section, tableNames());
             throw InputError(where(name, node) + ": " + section + ": unknown table" +
-                             (hint.empty() ? "" : " (did you mean '" + hint + "'?)") + "; allowed: " + join(tableNames()));
+                             (hint.empty() ? "" : " (did you mean '" + hint + "'?)") +
+                             "; allowed: " + join(tableNames()));
         }
         for (const auto& [key, value] : *t) setTableKey(out, name, *table, std::string(key.str()), value);
     }

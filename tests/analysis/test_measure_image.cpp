@@ -1,8 +1,8 @@
 // measureImage on images made on the CPU (the twin of the GL measurement view, see lobes.hpp) and on
 // small hand-made images whose moments are known exactly.
 
-#include "hilite/analysis/highlight.hpp"
 #include "analysis/lobes.hpp"
+#include "hilite/analysis/highlight.hpp"
 
 #include "hilite/core/chart.hpp"
 #include "hilite/core/error.hpp"

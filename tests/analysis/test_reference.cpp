@@ -1,7 +1,7 @@
 // measureReference against closed forms, a brute-force grid, and ../shared/notes/measurement.md's table.
 
-#include "hilite/analysis/highlight.hpp"
 #include "analysis/lobes.hpp"
+#include "hilite/analysis/highlight.hpp"
 
 #include "hilite/core/chart.hpp"
 #include "hilite/core/error.hpp"

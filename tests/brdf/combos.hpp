@@ -1,8 +1,8 @@
 #pragma once
 // Every model and term combination of the BRDF, for the tests that sweep them all.
 
-#include "hilite/brdf/params.hpp"
 #include "brdf/spectral.hpp"
+#include "hilite/brdf/params.hpp"
 
 #include <vector>
 
@@ -15,10 +15,9 @@ struct ModelCase {
 
 inline std::vector<ModelCase> allModels() {
     using brdf::Model;
-    return {{Model::Phong, false},    {Model::PhongClassic, false}, {Model::Blinn, false},
-            {Model::Gaussian, false}, {Model::Beckmann, false},     {Model::GGX, false},
-            {Model::Beckmann, true},  {Model::GGX, true},           {Model::None, false},
-            {Model::Retro, false}};
+    return {{Model::Phong, false},    {Model::PhongClassic, false}, {Model::Blinn, false},   {Model::Gaussian, false},
+            {Model::Beckmann, false}, {Model::GGX, false},          {Model::Beckmann, true}, {Model::GGX, true},
+            {Model::None, false},     {Model::Retro, false}};
 }
 
 /// Every model x geometry x Fresnel x diffuse, with parameters that give lobes of moderate width.

@@ -4,10 +4,10 @@
 // integrand f cos(theta_o) sin(theta_o) evaluated through brdf::evaluate. Nothing here is shared with
 // src/brdf/integrate.cpp (its Gauss-Legendre panels in the half-vector domain).
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/ndf_tables.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <doctest/doctest.h>
 
@@ -206,14 +206,14 @@ TEST_CASE("brdf::albedo against the adaptive Gauss-Kronrod reference over wo, ev
                 worstWhat = describe(p) + " at " + std::to_string(t);
             }
         }
-    MESSAGE("reference over wo: largest relative error " << std::setprecision(3) << worst << " (" << worstWhat
-                                                          << ")");
+    MESSAGE("reference over wo: largest relative error " << std::setprecision(3) << worst << " (" << worstWhat << ")");
 }
 
 TEST_CASE("brdf::albedo narrow lobes at grazing: the grading and the horizon edge together") {
     double worst = 0.0;
-    for (const brdf::Params& p : {make(Model::GGX, Geometry::None, 0.02), make(Model::GGX, Geometry::Smith, 0.02),
-                                  make(Model::Blinn, Geometry::Implicit, 1e4), make(Model::Phong, Geometry::Implicit, 1e4)})
+    for (const brdf::Params& p :
+         {make(Model::GGX, Geometry::None, 0.02), make(Model::GGX, Geometry::Smith, 0.02),
+          make(Model::Blinn, Geometry::Implicit, 1e4), make(Model::Phong, Geometry::Implicit, 1e4)})
         for (double t : {60.0, 85.0, 89.0}) {
             const double ref = referenceAlbedo(p, t, 10.0), a = brdf::albedo(p, t, 10.0).x;
             const double rel = std::abs(a - ref) / ref;
@@ -243,12 +243,14 @@ TEST_CASE("brdf::albedo of a tabulated NDF at normal incidence (D linear between
             for (double t : p.ndfTable->theta)
                 if (t > 0.0 && t < 0.25 * kPi) breaks.push_back(t);
             breaks.push_back(0.25 * kPi);
-            const double ref = 2.0 * kPi * adaptive(
-                                                [&](double t) {
-                                                    const double D = brdf::D_Tabulated(std::cos(t), std::sin(t) * std::sin(t), *p.ndfTable);
-                                                    return D * std::cos(t) * std::sin(t) * (g == Geometry::None ? 1.0 : std::cos(2.0 * t));
-                                                },
-                                                breaks, 1e-13);
+            const double ref =
+                2.0 * kPi *
+                adaptive(
+                    [&](double t) {
+                        const double D = brdf::D_Tabulated(std::cos(t), std::sin(t) * std::sin(t), *p.ndfTable);
+                        return D * std::cos(t) * std::sin(t) * (g == Geometry::None ? 1.0 : std::cos(2.0 * t));
+                    },
+                    breaks, 1e-13);
             const double a = brdf::albedo(p, 0.0, 10.0).x, rel = std::abs(a - ref) / ref;
             CAPTURE(describe(p));
             CAPTURE(p.ndfTable->theta.size());
@@ -261,8 +263,9 @@ TEST_CASE("brdf::albedo of a tabulated NDF at normal incidence (D linear between
 }
 
 TEST_CASE("brdf::albedo time per call (printed, not asserted)") {
-    for (const brdf::Params& p : {make(Model::GGX, Geometry::Smith, 0.3), make(Model::GGX, Geometry::CookTorrance, 0.5, 0.15),
-                                  make(Model::Phong, Geometry::Implicit, 1e4)}) {
+    for (const brdf::Params& p :
+         {make(Model::GGX, Geometry::Smith, 0.3), make(Model::GGX, Geometry::CookTorrance, 0.5, 0.15),
+          make(Model::Phong, Geometry::Implicit, 1e4)}) {
         const auto start = std::chrono::steady_clock::now();
         double sink = 0.0;
         int calls = 0;

@@ -63,8 +63,8 @@ TEST_CASE("cli::brdf albedo --json: theta_deg and albedo per line") {
 
 TEST_CASE("cli::brdf albedo --multiscatter kulla-conty: the white furnace, single scattering beside it") {
     const auto single = jsonLines(hilite("brdf albedo --roughness 1 --geometry smith --incidence 0,60 --json").out);
-    const auto ms =
-        jsonLines(hilite("brdf albedo --roughness 1 --geometry smith --multiscatter kulla-conty --incidence 0,60 --json").out);
+    const auto ms = jsonLines(
+        hilite("brdf albedo --roughness 1 --geometry smith --multiscatter kulla-conty --incidence 0,60 --json").out);
     REQUIRE(single.size() == 2);
     REQUIRE(ms.size() == 2);
     CHECK(single[0]["albedo"][0].get<double>() == doctest::Approx(0.3068528).epsilon(1e-6));  // 1 - ln 2

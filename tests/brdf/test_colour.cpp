@@ -1,7 +1,7 @@
 // The colour of a reflectance: the channels of a Fresnel term, their XYZ weights and CIELAB.
 
-#include "hilite/brdf/colour.hpp"
 #include "brdf/spectral.hpp"
+#include "hilite/brdf/colour.hpp"
 #include "hilite/brdf/terms.hpp"
 
 #include <doctest/doctest.h>

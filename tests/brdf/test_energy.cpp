@@ -60,10 +60,9 @@ TEST_CASE("brdf::energyTables white furnace: F = 1 with kulla-conty reflects 1 (
     }
     CHECK(worstTable < 1e-3);
     CHECK(largestLoss > 0.6);  // the furnace test fails without the term
-    MESSAGE("white furnace, GGX alpha 0.1-1, 0-85 deg: worst |albedo - 1| " << worst << "; single scattering loses up to "
-                                                                             << largestLoss
-                                                                             << "; worst table interpolation error "
-                                                                             << worstTable);
+    MESSAGE("white furnace, GGX alpha 0.1-1, 0-85 deg: worst |albedo - 1| "
+            << worst << "; single scattering loses up to " << largestLoss << "; worst table interpolation error "
+            << worstTable);
 }
 
 TEST_CASE("brdf::albedo single-scattering GGX alpha 1 with Smith keeps 1 - ln 2 at normal incidence") {
@@ -136,8 +135,7 @@ TEST_CASE("brdf::energyTables coupled diffuse: GGX dielectric specular + diffuse
                 CHECK(coupled <= 1.0 + 1e-9);
                 // rho (1 - E_s) is what the body returns: the sum is E_s + 1 - E_s less the table's raise.
                 CHECK(coupled > 1.0 - 3.0 * p.energy->esError - 1e-9);
-                CHECK(brdf::albedo(p, theta).x - brdf::albedo(lambert, theta).x ==
-                      doctest::Approx(-es).epsilon(1e-6));
+                CHECK(brdf::albedo(p, theta).x - brdf::albedo(lambert, theta).x == doctest::Approx(-es).epsilon(1e-6));
                 worstCoupled = std::max(worstCoupled, coupled);
                 worstUncoupled = std::max(worstUncoupled, uncoupled);
             }

@@ -1,8 +1,8 @@
 // The BRDF as a whole: reciprocity f(wi, wo) = f(wo, wi) for every model and term combination, and
 // the isotropic limit of the anisotropic path.
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/combos.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <doctest/doctest.h>
 

@@ -2,10 +2,10 @@
 // Rp = 0 at Brewster's angle), total internal reflection, F -> 1 at grazing for every material, the
 // conductor form against pbrt-v4's complex arithmetic, and Schlick's error against the exact curve.
 
-#include "hilite/brdf/evaluate.hpp"
-#include "hilite/brdf/terms.hpp"
 #include "brdf/materials.hpp"
 #include "brdf/spectral.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/brdf/terms.hpp"
 
 #include <doctest/doctest.h>
 

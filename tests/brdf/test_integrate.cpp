@@ -3,9 +3,9 @@
 // energy-conserving are reported (MESSAGE), not asserted. The library's integrator is checked against
 // an independent brute-force sum first.
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <doctest/doctest.h>
 

@@ -3,9 +3,9 @@
 // brdf::evaluate, the interpolation error off the bin centres, reciprocity, and every bad file refused in one
 // line. One GGX table is shared by the cases (tabulating it is the slow part).
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/merl.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
@@ -41,8 +41,8 @@ const merl::MeasuredBrdf& ggxTable() {
     static const merl::MeasuredBrdf t = [] {
         const auto t0 = std::chrono::steady_clock::now();
         merl::MeasuredBrdf m = merl::tabulate(ggxParams());
-        MESSAGE("tabulating GGX 0.1 took " << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
-                                           << " s");
+        MESSAGE("tabulating GGX 0.1 took "
+                << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s");
         return m;
     }();
     return t;
@@ -203,8 +203,9 @@ TEST_CASE("merl: tabulate -> encode -> parse round trip returns brdf::evaluate a
                     worstLinear = std::max(worstLinear, std::abs(linear[c] - want[c]) / want[c]);
                 }
             }
-    MESSAGE(bins << " bin centres: " << exact << " bit-exact, " << oneUlp << " within one ulp (nearest), worst relative error nearest " << worstNearest
-                 << ", multilinear " << worstLinear);
+    MESSAGE(bins << " bin centres: " << exact << " bit-exact, " << oneUlp
+                 << " within one ulp (nearest), worst relative error nearest " << worstNearest << ", multilinear "
+                 << worstLinear);
     CHECK(mismatched == 0);
     // rawFor picks the entry whose scaled value is closest; where no double entry x scale rounds to f (the
     // products skip doubles where the entry's ulp is relatively coarser than f's), the last bit differs.
@@ -293,7 +294,8 @@ TEST_CASE("merl: bad files are refused in one line naming the file, the problem 
     writeBytes(truncated, header(90, 90, 180) + std::string(8000, '\0'));
     m = refusal(truncated);
     CHECK(oneLine(m));
-    CHECK(m.find("'" + truncated + "' is 8012 bytes, expected 34992012 (a 12-byte header and 3 x 1458000 doubles): "
+    CHECK(m.find("'" + truncated +
+                 "' is 8012 bytes, expected 34992012 (a 12-byte header and 3 x 1458000 doubles): "
                  "truncated") != std::string::npos);
 
     const std::string folder = scratch("folder.binary");
@@ -323,7 +325,8 @@ TEST_CASE("merl: bad files are refused in one line naming the file, the problem 
     CHECK(refusal(nan).find("has an infinite entry in the green plane") != std::string::npos);
 
     std::string negative = header(90, 90, 180);
-    for (std::size_t i = 0; i < 3 * merl::kEntries; ++i) negative.append(reinterpret_cast<const char*>(&merl::kNoData), 8);
+    for (std::size_t i = 0; i < 3 * merl::kEntries; ++i)
+        negative.append(reinterpret_cast<const char*>(&merl::kNoData), 8);
     const std::string none = scratch("none.binary");
     writeBytes(none, negative);
     m = refusal(none);
@@ -355,7 +358,9 @@ TEST_CASE("merl: tabulate refuses what a MERL table cannot hold") {
 }
 
 TEST_CASE("merl: load reads a file once while it is unchanged, and brdf::evaluate looks the table up") {
-    const std::string path = (std::filesystem::temp_directory_path() / ("hilite-merl-load-" + std::to_string(getpid()) + ".binary")).string();
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("hilite-merl-load-" + std::to_string(getpid()) + ".binary"))
+            .string();
     merl::MeasuredBrdf constant;
     constant.raw.assign(3 * merl::kEntries, 1500.0);
     { std::ofstream(path, std::ios::binary) << merl::encode(constant); }

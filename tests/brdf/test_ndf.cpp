@@ -1,11 +1,11 @@
 // The NDFs are normalized: int D(h) (n.h) dw_h = 1 over the hemisphere, within 1e-3 for roughness
 // 0.02 .. 1 and exponents 1 .. 1e4, integrated in double by an adaptive quadrature in theta_h.
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/ndf.hpp"
-#include "hilite/brdf/params.hpp"
 #include "brdf/quadrature.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/brdf/params.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,10 +1,10 @@
 // The hand-painted (tabulated) NDF: reading, normalization, interpolation, Smith's Lambda from the table,
 // and one-line errors naming file:line for bad tables.
 
-#include "hilite/brdf/evaluate.hpp"
-#include "hilite/brdf/terms.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/ndf_tables.hpp"
+#include "hilite/brdf/evaluate.hpp"
+#include "hilite/brdf/terms.hpp"
 #include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
@@ -57,18 +57,14 @@ TEST_CASE("brdf::parseNdfTable bad tables: one line naming file:line") {
         const char* starts;    ///< the message's beginning: file:line
         const char* mentions;  ///< and what it says
     };
-    for (const Case& c : {Case{"0, 1\n10, 0.5\n5, 0.2\n", "bad.csv:3: ", "increase"},
-                          Case{"0, 1\n10, 0.5\n10, 0.2\n", "bad.csv:3: ", "increase"},
-                          Case{"0, 1\n10, -0.5\n", "bad.csv:2: ", ">= 0"},
-                          Case{"0, 1\n10, nan\n", "bad.csv:2: ", "finite"},
-                          Case{"0, 1\n10, inf\n", "bad.csv:2: ", "finite"},
-                          Case{"theta, D\n0, 1\n", "bad.csv:2: ", "too few rows"},
-                          Case{"", "bad.csv:0: ", "too few rows"},
-                          Case{"5, 1\n10, 0.5\n", "bad.csv:1: ", "start at theta_h = 0"},
-                          Case{"0, 1\n95, 0.5\n", "bad.csv:2: ", "[0, 90]"},
-                          Case{"0, 1\n10, 0.5, 3\n", "bad.csv:2: ", "two numbers"},
-                          Case{"0, 1\n10, x\n", "bad.csv:2: ", "two numbers"},
-                          Case{"0, 0\n10, 0\n", "bad.csv:2: ", "0 everywhere"}}) {
+    for (const Case& c :
+         {Case{"0, 1\n10, 0.5\n5, 0.2\n", "bad.csv:3: ", "increase"},
+          Case{"0, 1\n10, 0.5\n10, 0.2\n", "bad.csv:3: ", "increase"}, Case{"0, 1\n10, -0.5\n", "bad.csv:2: ", ">= 0"},
+          Case{"0, 1\n10, nan\n", "bad.csv:2: ", "finite"}, Case{"0, 1\n10, inf\n", "bad.csv:2: ", "finite"},
+          Case{"theta, D\n0, 1\n", "bad.csv:2: ", "too few rows"}, Case{"", "bad.csv:0: ", "too few rows"},
+          Case{"5, 1\n10, 0.5\n", "bad.csv:1: ", "start at theta_h = 0"},
+          Case{"0, 1\n95, 0.5\n", "bad.csv:2: ", "[0, 90]"}, Case{"0, 1\n10, 0.5, 3\n", "bad.csv:2: ", "two numbers"},
+          Case{"0, 1\n10, x\n", "bad.csv:2: ", "two numbers"}, Case{"0, 0\n10, 0\n", "bad.csv:2: ", "0 everywhere"}}) {
         CAPTURE(c.text);
         try {
             brdf::parseNdfTable(c.text, "bad.csv");
@@ -80,6 +76,6 @@ TEST_CASE("brdf::parseNdfTable bad tables: one line naming file:line") {
             CHECK(m.find('\n') == std::string::npos);
         }
     }
-    CHECK_THROWS_WITH_AS(brdf::loadNdfTable("/nonexistent/d.csv"), doctest::Contains("--ndf-table: cannot read '/nonexistent/d.csv'"),
-                         InputError);
+    CHECK_THROWS_WITH_AS(brdf::loadNdfTable("/nonexistent/d.csv"),
+                         doctest::Contains("--ndf-table: cannot read '/nonexistent/d.csv'"), InputError);
 }

@@ -34,7 +34,8 @@ TEST_CASE("brdf::readCsv the data files, their sources kept") {
         CHECK(t.columns[0].size() == 56);
         CHECK(t.source.find("pbrt-v4") != std::string::npos);
     }
-    CHECK_THROWS_AS(brdf::readCsv(dir + "/no-such-file.csv", 2), InputError);  // a missing data file is the scene's error: exit 2
+    CHECK_THROWS_AS(brdf::readCsv(dir + "/no-such-file.csv", 2),
+                    InputError);  // a missing data file is the scene's error: exit 2
     CHECK_THROWS_AS(brdf::readCsv(dir + "/metals/Cu_eta_k.csv", 2), InputError);  // 3 numbers a row
 }
 
@@ -129,7 +130,8 @@ TEST_CASE("brdf::F_SpectralTable within 1e-5 of F_Spectral over cos theta_d in [
                 }
             CAPTURE(metal);
             CAPTURE(step);
-            MESSAGE(metal << " (" << s->size() << " wavelengths): table worst error " << worst << " at cos " << worstAt);
+            MESSAGE(metal << " (" << s->size() << " wavelengths): table worst error " << worst << " at cos "
+                          << worstAt);
             CHECK(worst <= 1e-5);
             CHECK(worst > 0.0);  // the table is an approximation: a 0 would mean the exact sum was compared with itself
             CHECK(brdf::F_SpectralTable(1.0, *s) == brdf::F_Spectral(1.0, *s));  // the ends are entries

@@ -101,16 +101,18 @@ TEST_CASE("brdf_file::parse") {
         CHECK(f.shader.find('\r') == std::string::npos);
     }
     SUBCASE("no parameters at all") {
-        const auto f = brdf_file::parse("analytic\n::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"
-                                        " { return vec3(1.0); }\n::end shader\n",
-                                        "t.brdf");
+        const auto f = brdf_file::parse(
+            "analytic\n::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"
+            " { return vec3(1.0); }\n::end shader\n",
+            "t.brdf");
         CHECK(f.parameters.empty());
         CHECK(f.parametersLine == 0);
     }
 }
 
 TEST_CASE("brdf_file::parse malformed files: one line naming file and line") {
-    const std::string shader = "::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return L; }\n::end shader\n";
+    const std::string shader =
+        "::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return L; }\n::end shader\n";
     struct Case {
         const char* what;
         std::string text, expected;
@@ -157,7 +159,9 @@ TEST_CASE("brdf_file::parse malformed files: one line naming file and line") {
              Case{"BRDF in a comment only",
                   "analytic\n::begin shader\n// vec3 BRDF(vec3 L)\n/* vec3 BRDF( */\n::end shader\n",
                   "t.brdf:2: the shader (lines 3-4) defines no function"},
-             Case{"float BRDF", "analytic\n::begin shader\nfloat BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 1.0; }\n::end shader\n",
+             Case{"float BRDF",
+                  "analytic\n::begin shader\nfloat BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return 1.0; }\n::end "
+                  "shader\n",
                   "t.brdf:2: the shader (lines 3-3) defines BRDF returning 'float'"},
              Case{"NUL byte", std::string("analytic\n\0", 10), "t.brdf: a NUL byte"},
          }) {
@@ -204,8 +208,9 @@ TEST_CASE("brdf_file::assign") {
                  Case{"divide_by_NdotL=2", "t.brdf:6: --param divide_by_NdotL=2: 'bool divide_by_NdotL' takes 0, 1"},
                  Case{"tint=1,2", "t.brdf:7: --param tint=1,2: 'color tint' takes V or R,G,B"},
                  Case{"tint=1,x,2", "t.brdf:7: --param tint=1,x,2: 'color tint' takes V or R,G,B"},
-                 Case{"m=5", "t.brdf:4: --param m=5: no parameter 'm' (did you mean 'n'?); the file declares n, "
-                             "divide_by_NdotL, tint"},
+                 Case{"m=5",
+                      "t.brdf:4: --param m=5: no parameter 'm' (did you mean 'n'?); the file declares n, "
+                      "divide_by_NdotL, tint"},
                  Case{"tnit=1", "t.brdf:4: --param tnit=1: no parameter 'tnit' (did you mean 'tint'?)"},
                  Case{"100", "t.brdf: --param '100': expected NAME=VALUE"},
                  Case{"", "t.brdf: --param '': expected NAME=VALUE"},

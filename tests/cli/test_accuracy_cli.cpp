@@ -32,13 +32,16 @@ std::string readText(const std::string& path) {
 }  // namespace
 
 TEST_CASE("cli::measure accuracy flags: bad values, one line naming the flag and its range, exit 2") {
-    struct Case { const char* args; const char* mentions; };
-    for (const Case c : {Case{"--tolerance 0", "--tolerance: must be a finite number in [1e-05, 0.1]"},
-                         Case{"--tolerance 0.5", "[1e-05, 0.1]"}, Case{"--tolerance nan", "--tolerance"},
-                         Case{"--tolerance abc", "--tolerance"}, Case{"--tolerance 1e-3 --reference", "--tolerance"},
-                         Case{"--supersample 0", "--supersample: must be a whole number in [1, 8]"},
-                         Case{"--supersample 9", "[1, 8]"}, Case{"--renderer vulkan", "--renderer"},
-                         Case{"--crop maybe", "--crop"}}) {
+    struct Case {
+        const char* args;
+        const char* mentions;
+    };
+    for (const Case c :
+         {Case{"--tolerance 0", "--tolerance: must be a finite number in [1e-05, 0.1]"},
+          Case{"--tolerance 0.5", "[1e-05, 0.1]"}, Case{"--tolerance nan", "--tolerance"},
+          Case{"--tolerance abc", "--tolerance"}, Case{"--tolerance 1e-3 --reference", "--tolerance"},
+          Case{"--supersample 0", "--supersample: must be a whole number in [1, 8]"}, Case{"--supersample 9", "[1, 8]"},
+          Case{"--renderer vulkan", "--renderer"}, Case{"--crop maybe", "--crop"}}) {
         CAPTURE(c.args);
         const Result r = hilite(std::string("measure --incidence 30 ") + c.args);
         CHECK(r.code == 2);
@@ -132,10 +135,10 @@ targets = [1e-2, 1e-3]
 TEST_CASE("cli::run bad case axes: one line, exit 2") {
     Dir d;
     for (const std::string& bad :
-         {std::string("[[sweep]]\nkey = \"s\"\ncases = [{ material = { model = \"ggx\" } }]\n"),       // no name
-          std::string("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", roughness = 0.1 }]\n"),        // not a table
+         {std::string("[[sweep]]\nkey = \"s\"\ncases = [{ material = { model = \"ggx\" } }]\n"),  // no name
+          std::string("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", roughness = 0.1 }]\n"),   // not a table
           std::string("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", material = { rougness = 1 } }]\n"),
-          std::string("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\" }, { name = \"a\" }]\n"),        // twice
+          std::string("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\" }, { name = \"a\" }]\n"),  // twice
           std::string("[timing]\nrepeats = 0\n"), std::string("[pareto]\nfile = \"x.png\"\n")}) {
         CAPTURE(bad);
         std::ofstream(d / "bad.toml", std::ios::trunc) << bad;

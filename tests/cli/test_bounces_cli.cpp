@@ -54,7 +54,8 @@ y = "traced_chroma2"
 }  // namespace
 
 TEST_CASE("cli::brdf bounces --json: one line per incidence with the study's columns") {
-    const auto r = hilite(std::string("brdf bounces --roughness 0.6 --material gold --incidence 0,60 --json ") + kSmall, true);
+    const auto r =
+        hilite(std::string("brdf bounces --roughness 0.6 --material gold --incidence 0,60 --json ") + kSmall, true);
     REQUIRE(r.code == 0);
     std::istringstream in(r.out);
     std::vector<nlohmann::json> lines;
@@ -82,9 +83,10 @@ TEST_CASE("cli::brdf bounces: bad input is one line naming the flag, exit 2") {
         const char* args;
         const char* names;
     };
-    for (const Case& c : {Case{"--model ggx", "--model"}, Case{"--paths 1", "--paths"}, Case{"--texels 100", "--texels"},
-                          Case{"--texels 128 --bumps-per-tile 64", "--bumps-per-tile"}, Case{"--roughness 3", "--roughness"},
-                          Case{"--incidence 90", "--incidence"}, Case{"--surface cubic", "--surface"}}) {
+    for (const Case& c :
+         {Case{"--model ggx", "--model"}, Case{"--paths 1", "--paths"}, Case{"--texels 100", "--texels"},
+          Case{"--texels 128 --bumps-per-tile 64", "--bumps-per-tile"}, Case{"--roughness 3", "--roughness"},
+          Case{"--incidence 90", "--incidence"}, Case{"--surface cubic", "--surface"}}) {
         CAPTURE(c.args);
         const auto r = hilite(std::string("brdf bounces ") + c.args);
         CHECK(r.code == 2);

@@ -24,16 +24,19 @@ std::string tmpPath(const std::string& name) {
 
 TEST_CASE("cli::render bad input: one line naming the flag, exit 2, nothing written") {
     const std::string out = tmpPath("bad.png");
-    struct Case { const char* args; const char* mentions; };
-    for (const Case c : {Case{"--model lambertian", "--model"}, Case{"--roughness -1", "--roughness"},
-                         Case{"--roughness nan", "--roughness"}, Case{"--roughness inf", "--roughness"},
-                         Case{"--exponent -5", "--exponent"}, Case{"--exponent nan", "--exponent"},
-                         Case{"--incidence 91", "--incidence"}, Case{"--incidence -1", "--incidence"},
-                         Case{"--size 0", "--size"}, Case{"--size 16385", "--size"},
-                         Case{"--size 16384x16384x", "--size"}, Case{"--fresnel maybe", "--fresnel"},
-                         Case{"--f0 1.5", "--f0"}, Case{"--geometry none2", "--geometry"},
-                         Case{"--view sideways", "--view"}, Case{"--light spot", "--light"},
-                         Case{"--light-distance 0", "--light-distance"}, Case{"--intensity -1", "--intensity"}}) {
+    struct Case {
+        const char* args;
+        const char* mentions;
+    };
+    for (const Case c :
+         {Case{"--model lambertian", "--model"}, Case{"--roughness -1", "--roughness"},
+          Case{"--roughness nan", "--roughness"}, Case{"--roughness inf", "--roughness"},
+          Case{"--exponent -5", "--exponent"}, Case{"--exponent nan", "--exponent"},
+          Case{"--incidence 91", "--incidence"}, Case{"--incidence -1", "--incidence"}, Case{"--size 0", "--size"},
+          Case{"--size 16385", "--size"}, Case{"--size 16384x16384x", "--size"}, Case{"--fresnel maybe", "--fresnel"},
+          Case{"--f0 1.5", "--f0"}, Case{"--geometry none2", "--geometry"}, Case{"--view sideways", "--view"},
+          Case{"--light spot", "--light"}, Case{"--light-distance 0", "--light-distance"},
+          Case{"--intensity -1", "--intensity"}}) {
         CAPTURE(c.args);
         const auto r = hilite(std::string("render ") + c.args + " -o " + out);
         CHECK(r.code == 2);
@@ -61,7 +64,8 @@ TEST_CASE("cli::render an unwritable output leaves an existing file untouched") 
 
 TEST_CASE("cli::render writes PNG and PFM") {
     const std::string png = tmpPath("ok.png"), pfm = tmpPath("ok.pfm");
-    const auto r = hilite("render --size 16x8 --model phong --exponent 100 --incidence 30 -o " + png + " --float " + pfm);
+    const auto r =
+        hilite("render --size 16x8 --model phong --exponent 100 --incidence 30 -o " + png + " --float " + pfm);
     CHECK(r.code == 0);
     CHECK(std::filesystem::file_size(pfm) == std::string("PF\n16 8\n-1.0\n").size() + 16 * 8 * 3 * 4);
     CHECK(std::filesystem::file_size(png) > 8);
@@ -73,10 +77,10 @@ TEST_CASE("cli::measure JSON lines carry the contract's fields") {
     const auto r = hilite("measure --model ggx --roughness 0.1 --incidence 0:60:30 --size 128 --json", true);
     REQUIRE(r.code == 0);
     CHECK(lines(r.out) == 3);
-    for (const char* field : {"\"model\"", "\"incidence_deg\"", "\"aspect\"", "\"eccentricity\"", "\"major_deg\"",
-                              "\"minor_deg\"", "\"orientation_deg\"", "\"centroid_u_deg\"", "\"centroid_v_deg\"",
-                              "\"fwhm_u_deg\"", "\"fwhm_v_deg\"", "\"peak\"", "\"flags\"", "\"renders\"", "\"size\"",
-                              "\"render_ms\"", "\"measure_ms\""}) {
+    for (const char* field :
+         {"\"model\"", "\"incidence_deg\"", "\"aspect\"", "\"eccentricity\"", "\"major_deg\"", "\"minor_deg\"",
+          "\"orientation_deg\"", "\"centroid_u_deg\"", "\"centroid_v_deg\"", "\"fwhm_u_deg\"", "\"fwhm_v_deg\"",
+          "\"peak\"", "\"flags\"", "\"renders\"", "\"size\"", "\"render_ms\"", "\"measure_ms\""}) {
         CAPTURE(field);
         CHECK(r.out.find(field) != std::string::npos);
     }
@@ -138,7 +142,8 @@ TEST_CASE("cli::measure says what a highlight is framed about (retroreflection)"
     CHECK(r.code == 0);
     CHECK(r.out.find("\"framed_about\":\"peak (retroreflection: toward the light, 2 theta_i = 120 deg") !=
           std::string::npos);
-    CHECK((r.out.find("\"peak_offset_deg\":120") != std::string::npos || r.out.find("\"peak_offset_deg\":119.9999") != std::string::npos));
+    CHECK((r.out.find("\"peak_offset_deg\":120") != std::string::npos ||
+           r.out.find("\"peak_offset_deg\":119.9999") != std::string::npos));
     const auto t = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64", true);
     CHECK(t.out.find("about the peak, 120 deg from the mirror direction") != std::string::npos);
     const auto g = hilite("measure --model ggx --incidence 60 --size 64 --json", true);
@@ -147,7 +152,10 @@ TEST_CASE("cli::measure says what a highlight is framed about (retroreflection)"
 
 TEST_CASE("cli tabulated NDF: bad tables are one-line errors naming file:line, exit 2, nothing written") {
     const std::string table = tmpPath("ndf.csv"), out = tmpPath("ndf.png");
-    struct Case { const char* text; const char* line; };
+    struct Case {
+        const char* text;
+        const char* line;
+    };
     for (const Case c : {Case{"0, 1\n10, 0.5\n5, 0.2\n", ":3: "}, Case{"0, 1\n10, -0.5\n", ":2: "},
                          Case{"0, 1\n10, nan\n", ":2: "}, Case{"0, 1\n", ":1: "}}) {
         std::ofstream(table) << c.text;
@@ -165,8 +173,8 @@ TEST_CASE("cli tabulated NDF: bad tables are one-line errors naming file:line, e
     CHECK(missing.code == 2);
     CHECK(lines(missing.out) == 1);
     CHECK(missing.out.find("/nonexistent/ndf.csv") != std::string::npos);
-    CHECK(hilite("measure --model tabulated").code == 2);                                  // no table
-    CHECK(hilite("measure --model ggx --ndf-table " + table).code == 2);                   // a table for another model
+    CHECK(hilite("measure --model tabulated").code == 2);                 // no table
+    CHECK(hilite("measure --model ggx --ndf-table " + table).code == 2);  // a table for another model
     std::ofstream(table) << "theta_h_deg, D\n0, 4\n2, 3\n5, 1\n10, 0\n";
     const auto ok = hilite("measure --model tabulated --ndf-table " + table + " --incidence 30 --size 64 --json", true);
     CHECK(ok.code == 0);
@@ -177,7 +185,10 @@ TEST_CASE("cli tabulated NDF: bad tables are one-line errors naming file:line, e
 }
 
 TEST_CASE("cli a flag combination a path cannot honour is refused, never silently measured another way") {
-    struct Case { const char* args; const char* mentions; };
+    struct Case {
+        const char* args;
+        const char* mentions;
+    };
     for (const Case c : {Case{"--model beckmann --bumps explicit --renderer cpu", "--renderer cpu"},
                          Case{"--model beckmann --bumps explicit --tolerance 1e-3", "--tolerance"},
                          Case{"--model beckmann --bumps explicit --reference", "--reference"}}) {

@@ -37,13 +37,18 @@ TEST_CASE("cli::fit: each built-in model's table is fitted back to its model (ra
         std::string model, param;
         double value;
     };
-    const Case cases[] = {{"phong", "exponent", 200}, {"blinn", "exponent", 300}, {"beckmann", "roughness", 0.08}, {"ggx", "roughness", 0.1}};
+    const Case cases[] = {{"phong", "exponent", 200},
+                          {"blinn", "exponent", 300},
+                          {"beckmann", "roughness", 0.08},
+                          {"ggx", "roughness", 0.1}};
     for (const Case& c : cases) {
         CAPTURE(c.model);
         const std::string file = dir / (c.model + ".binary");
         std::ostringstream v;
         v << c.value;
-        REQUIRE(hilite_test::hilite("brdf tabulate --model " + c.model + " --" + c.param + " " + v.str() + " -o " + file).code == 0);
+        REQUIRE(
+            hilite_test::hilite("brdf tabulate --model " + c.model + " --" + c.param + " " + v.str() + " -o " + file)
+                .code == 0);
         const auto r = hilite_test::hilite("fit --target " + file + kSweep, true);
         REQUIRE(r.code == 0);
         const auto fits = jsonLines(r.out);
@@ -60,7 +65,8 @@ TEST_CASE("cli::fit: each built-in model's table is fitted back to its model (ra
         CHECK(own["rank"] == 1);
         const double got = own["params"][c.param].get<double>();
         CHECK(std::abs(got / c.value - 1) < 0.01);
-        for (const auto& [m, f] : by) CHECK(f["params"].contains(m == "phong" || m == "blinn" ? "exponent" : "roughness"));
+        for (const auto& [m, f] : by)
+            CHECK(f["params"].contains(m == "phong" || m == "blinn" ? "exponent" : "roughness"));
     }
 }
 
@@ -68,8 +74,9 @@ TEST_CASE("cli::fit: Phong fitted to a GGX table leaves an aspect residual that 
     hilite_test::TempDir dir("hilite-fit-phong");
     const std::string file = dir / "ggx.binary";
     REQUIRE(hilite_test::hilite("brdf tabulate --model ggx --roughness 0.1 -o " + file).code == 0);
-    const auto r = hilite_test::hilite("fit --target " + file + " --models phong,ggx --incidence 0:80:10 --size 128 -o " + (dir / "out") +
-                                       " --json", true);
+    const auto r = hilite_test::hilite(
+        "fit --target " + file + " --models phong,ggx --incidence 0:80:10 --size 128 -o " + (dir / "out") + " --json",
+        true);
     REQUIRE(r.code == 0);
     const auto fits = jsonLines(r.out);
     REQUIRE(fits.size() == 2);
@@ -83,7 +90,8 @@ TEST_CASE("cli::fit: Phong fitted to a GGX table leaves an aspect residual that 
     // Phong stays round while GGX narrows towards cos(theta_i): at 80 deg the residual is most of 1 - cos.
     CHECK(res[8].get<double>() > 0.5 * (1 - std::cos(80 * M_PI / 180)));
     CHECK(fits[1]["rank"] == 1);
-    for (const char* f : {"fit.json", "fit.csv"}) CHECK(std::filesystem::exists(std::filesystem::path(dir / "out") / f));
+    for (const char* f : {"fit.json", "fit.csv"})
+        CHECK(std::filesystem::exists(std::filesystem::path(dir / "out") / f));
 }
 
 TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, nothing written") {
@@ -123,14 +131,19 @@ TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, n
     }
 }
 
-TEST_CASE("cli::fit: the fit_models experiment over a folder of tables writes the ranking, and a bad fit table is refused") {
+TEST_CASE(
+    "cli::fit: the fit_models experiment over a folder of tables writes the ranking, and a bad fit table is refused") {
     hilite_test::TempDir dir("hilite-fit-exp");
     std::filesystem::create_directories(std::filesystem::path(dir / "tables"));
-    REQUIRE(hilite_test::hilite("brdf tabulate --model blinn --exponent 300 -o " + (dir / "tables/a_blinn.binary")).code == 0);
-    REQUIRE(hilite_test::hilite("brdf tabulate --model ggx --roughness 0.1 -o " + (dir / "tables/b_ggx.binary")).code == 0);
+    REQUIRE(
+        hilite_test::hilite("brdf tabulate --model blinn --exponent 300 -o " + (dir / "tables/a_blinn.binary")).code ==
+        0);
+    REQUIRE(hilite_test::hilite("brdf tabulate --model ggx --roughness 0.1 -o " + (dir / "tables/b_ggx.binary")).code ==
+            0);
     { std::ofstream(dir / "tables/notes.txt") << "not a table"; }  // other files in the folder are not targets
-    const std::string head = "[experiment]\nname = \"fit_folder\"\n[scene.light]\nincidence = \"0:80:20\"\n"
-                             "[scene.camera]\nsize = \"128\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \"tables\"\n";
+    const std::string head =
+        "[experiment]\nname = \"fit_folder\"\n[scene.light]\nincidence = \"0:80:20\"\n"
+        "[scene.camera]\nsize = \"128\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \"tables\"\n";
     { std::ofstream(dir / "fit.toml") << head << "[fit]\nmodels = [\"blinn\", \"ggx\"]\nthresholds = [0.25, 0.75]\n"; }
     const std::string out = dir / "out";
     const auto r = hilite_test::hilite("run " + (dir / "fit.toml") + " -o " + out);
@@ -159,9 +172,12 @@ TEST_CASE("cli::fit: the fit_models experiment over a folder of tables writes th
         {head + "[fit]\nweights = [1]\n", "fit.weights: one per threshold"},
         {head + "[fit]\ngeometry = \"bogus\"\n", "fit.geometry: 'bogus'"},
         {head + "[fit]\nmodels = [\"ggx\"]\n[match]\nmaterial.model = \"ggx\"\n", "[match]: not with [fit]"},
-        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \"nowhere\"\n[fit]\n", "is not a folder"},
-        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \".\"\n[fit]\n", "holds no .binary file"},
-        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.roughness\"\nfolder = \"tables\"\n[fit]\n", "folder: lists files for"},
+        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \"nowhere\"\n[fit]\n",
+         "is not a folder"},
+        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \".\"\n[fit]\n",
+         "holds no .binary file"},
+        {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.roughness\"\nfolder = \"tables\"\n[fit]\n",
+         "folder: lists files for"},
     };
     for (const Case& c : bad) {
         CAPTURE(c.text);
@@ -177,8 +193,10 @@ TEST_CASE("cli::fit: the fit_models experiment over a folder of tables writes th
 
 TEST_CASE("cli::fit: a .brdf target (framed blind, no twin) fits back to its model") {
     const std::string file = std::string(HILITE_SOURCE_DIR_STR) + "/experiments/brdfs/ggx.brdf";  // GGX alpha 0.1
-    const auto r = hilite_test::hilite("fit --target " + file + " --models ggx,beckmann --incidence 0:80:20 "
-                                       "--thresholds 0.25,0.5,0.75 --json", true);
+    const auto r = hilite_test::hilite("fit --target " + file +
+                                           " --models ggx,beckmann --incidence 0:80:20 "
+                                           "--thresholds 0.25,0.5,0.75 --json",
+                                       true);
     REQUIRE(r.code == 0);
     const auto fits = jsonLines(r.out);
     REQUIRE(fits.size() == 2);
@@ -192,11 +210,13 @@ TEST_CASE("cli::fit: --fit-anisotropy recovers both roughnesses, --fit-f0 Schlic
     const std::string sweep = " --models ggx --incidence 0:80:20 --thresholds 0.25,0.5,0.75 --json";
     // Measured: 0.100012 x 0.200011 (from both splits of the target's aspect at 0 deg; an isotropic start stalled
     // at 0.148 x 0.139), and F0 0.49989 with roughness 0.100009.
-    const auto a = jsonLines(hilite_test::hilite("fit --model ggx --roughness 0.1 --roughness-y 0.2 --fit-anisotropy" + sweep, true).out);
+    const auto a = jsonLines(
+        hilite_test::hilite("fit --model ggx --roughness 0.1 --roughness-y 0.2 --fit-anisotropy" + sweep, true).out);
     REQUIRE(a.size() == 1);
     CHECK(std::abs(a[0]["params"]["roughness"].get<double>() / 0.1 - 1) < 0.01);
     CHECK(std::abs(a[0]["params"]["roughness_y"].get<double>() / 0.2 - 1) < 0.01);
-    const auto f = jsonLines(hilite_test::hilite("fit --model ggx --roughness 0.1 --fresnel schlick --f0 0.5 --fit-f0" + sweep, true).out);
+    const auto f = jsonLines(
+        hilite_test::hilite("fit --model ggx --roughness 0.1 --fresnel schlick --f0 0.5 --fit-f0" + sweep, true).out);
     REQUIRE(f.size() == 1);
     CHECK(std::abs(f[0]["params"]["roughness"].get<double>() / 0.1 - 1) < 0.01);
     CHECK(std::abs(f[0]["params"]["f0"].get<double>() / 0.5 - 1) < 0.01);

@@ -29,9 +29,9 @@ using namespace hilite_test;
 namespace {
 
 struct Case {
-    std::string args;    ///< hilite's arguments; {d} stands for the scratch folder
-    int code;            ///< the exit code expected
-    std::string needle;  ///< what the one-line message must contain ({d} replaced too)
+    std::string args;      ///< hilite's arguments; {d} stands for the scratch folder
+    int code;              ///< the exit code expected
+    std::string needle;    ///< what the one-line message must contain ({d} replaced too)
     std::string env = "";  ///< NAME=VALUE set for this case only ("": none)
 };
 
@@ -88,7 +88,8 @@ struct Scratch : TempDir {
         write("ok.brdf", kBrdf);
         write("ok.csv", "theta_h_deg, D\n0, 10\n10, 5\n20, 1\n40, 0\n");
         write("tiny.toml", kSmall);
-        write("brdfexp.toml", "[scene.material]\nbrdf = \"ok.brdf\"\n[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 30]\n");
+        write("brdfexp.toml",
+              "[scene.material]\nbrdf = \"ok.brdf\"\n[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 30]\n");
         write("fov0.toml", std::string(kSmall) + "[[sweep]]\nkey = \"camera.fov\"\nvalues = [\"auto\", 0]\n");
         write("fovword.toml", std::string(kSmall) + "[[sweep]]\nkey = \"camera.fov\"\nvalues = [\"automatic\"]\n");
         write("elevword.toml", std::string(kSmall) + "[[sweep]]\nkey = \"camera.elevation\"\nrange = [-10, 10, 10]\n");
@@ -110,7 +111,8 @@ std::vector<Case> flagCases() {
     const std::vector<std::pair<std::string, std::vector<std::string>>> numbers = {
         {"--roughness", {"-1", "nan", "inf", "''", "abc", "1e400", "0x10", "1,2"}},
         {"--exponent", {"-5", "nan", "''", "1e999"}},
-        {"--incidence", {"91", "-1", "nan", "''", "0:90:inf", "0:90:0", "90:0:5", "1,,2", "0:90", "0:90:5:1", "0:1e9:1e-9"}},
+        {"--incidence",
+         {"91", "-1", "nan", "''", "0:90:inf", "0:90:0", "90:0:5", "1,,2", "0:90", "0:90:5:1", "0:1e9:1e-9"}},
         {"--azimuth", {"nan", "inf", "''", "x"}},
         {"--size", {"0", "-5", "16385", "1.5", "10x", "x10", "''", "1e9"}},
         {"--bump-seed", {"9007199254740993", "-1", "1.5", "''", "1e300"}},
@@ -124,8 +126,9 @@ std::vector<Case> flagCases() {
         {"--gpu", {"-1", "1.5", "''", "1023", "x"}},  // 1023: within the registry, beyond any machine's EGL devices
         {"--tint", {"1,2", "1,2,3,4", "nan", "-1"}},
         {"--light", {"bogus", "area", "''"}},
-        {"--light-radius", {"0", "-1", "-0", "nan", "inf", "''"}},  // a sphere has a size: zero or negative is no sphere
-        {"--light-angle", {"0", "90", "91", "-1", "nan", "''"}},     // an angular radius in (0, 90)
+        {"--light-radius",
+         {"0", "-1", "-0", "nan", "inf", "''"}},                  // a sphere has a size: zero or negative is no sphere
+        {"--light-angle", {"0", "90", "91", "-1", "nan", "''"}},  // an angular radius in (0, 90)
         {"--light-rings", {"0", "33", "1.5", "-1", "automatic", "''"}},
     };
     for (const auto& [flag, values] : numbers)
@@ -144,16 +147,20 @@ std::vector<Case> flagCases() {
     cases.push_back({"run {d}/tiny.toml --shard 0/0 -o {d}/sh", 2, "--shard"});
     cases.push_back({"run ''", 2, "empty experiment name"});
     // A sweep takes what the flag takes: "auto" or a number in range; 0 is no longer a way to say automatic.
-    cases.push_back({"run {d}/fov0.toml -o {d}/f", 2, "fov0.toml:10: camera.fov: must be auto or a finite number in (0, 179] (got 0)"});
-    cases.push_back({"run {d}/fovword.toml -o {d}/f", 2, "fovword.toml:10: camera.fov: expected auto or a number in (0, 179] (got 'automatic')"});
-    cases.push_back({"run {d}/elevword.toml -o {d}/f", 2, "elevword.toml:10: sweep.range: must be auto or a finite number in [0, 90] (got -10)"});
+    cases.push_back({"run {d}/fov0.toml -o {d}/f", 2,
+                     "fov0.toml:10: camera.fov: must be auto or a finite number in (0, 179] (got 0)"});
+    cases.push_back({"run {d}/fovword.toml -o {d}/f", 2,
+                     "fovword.toml:10: camera.fov: expected auto or a number in (0, 179] (got 'automatic')"});
+    cases.push_back({"run {d}/elevword.toml -o {d}/f", 2,
+                     "elevword.toml:10: sweep.range: must be auto or a finite number in [0, 90] (got -10)"});
     cases.push_back({"run {d}/tiny.toml --gl-backend bogus -o {d}/gb", 2, "bogus"});
     return cases;
 }
 
 std::vector<Case> sceneCases(Scratch& s) {
     std::vector<Case> cases;
-    const std::vector<std::pair<std::string, std::string>> files = {  // text, the file:line[: key] expected
+    const std::vector<std::pair<std::string, std::string>> files = {
+        // text, the file:line[: key] expected
         {"[material]\nrougness = 0.1\n", ":2: material.rougness"},
         {"[material]\nroughness = -1\n", ":2"},
         {"[material]\nroughness = \"\"\n", ":2"},
@@ -166,7 +173,8 @@ std::vector<Case> sceneCases(Scratch& s) {
         {"[light]\nincidence = 100\n", ":2"},
         {"[light]\nincidence = \"0:90:inf\"\n", ":2"},
         {"[light]\nroughness = 0.1\n", ":2: light.roughness"},
-        {"[light]\nlight = \"sphere\"\nlight_radius = 9\nincidence = 60\n", ":3: light.light_radius: a sphere of radius 9"},
+        {"[light]\nlight = \"sphere\"\nlight_radius = 9\nincidence = 60\n",
+         ":3: light.light_radius: a sphere of radius 9"},
         {"[light]\nlight = \"disk\"\nlight_angle = 90\n", ":3: light.light_angle: must be a finite number in (0, 90)"},
         {"[camera]\nsize = 0\n", ":2"},
         {"[camera]\nsize = \"16385\"\n", ":2"},
@@ -188,7 +196,8 @@ std::vector<Case> sceneCases(Scratch& s) {
     for (size_t i = 0; i < files.size(); ++i) {
         const std::string name = "scene" + std::to_string(i) + ".toml";
         s.write(name, files[i].first);
-        cases.push_back({"measure --scene {d}/" + name, 2, name + files[i].second});  // no --size: it overrides the file's
+        cases.push_back(
+            {"measure --scene {d}/" + name, 2, name + files[i].second});  // no --size: it overrides the file's
     }
     return cases;
 }
@@ -198,11 +207,18 @@ std::vector<Case> brdfCases(Scratch& s) {
     const std::vector<std::pair<std::string, std::string>> files = {
         {"", ".brdf"},
         {"analytic\n", ".brdf"},
-        {"analytic\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y ) { return vec3(1.0); }\n", ".brdf"},
+        {"analytic\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y ) { return vec3(1.0); }\n",
+         ".brdf"},
         {"analytic\n::begin parameters\nfloat a 0 1\n::end parameters\n::begin shader\n::end shader\n", ".brdf:"},
-        {"analytic\n::begin parameters\nbogus a 0 1 0.5\n::end parameters\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y ) { return vec3(a); }\n::end shader\n", ".brdf:"},
-        {"analytic\n::begin parameters\nfloat a 1 0 0.5\n::end parameters\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y ) { return vec3(a); }\n::end shader\n", ".brdf:"},
-        {"analytic\n::begin parameters\nfloat a 0 1 nan\n::end parameters\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y ) { return vec3(a); }\n::end shader\n", ".brdf:"},
+        {"analytic\n::begin parameters\nbogus a 0 1 0.5\n::end parameters\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, "
+         "vec3 N, vec3 X, vec3 Y ) { return vec3(a); }\n::end shader\n",
+         ".brdf:"},
+        {"analytic\n::begin parameters\nfloat a 1 0 0.5\n::end parameters\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, "
+         "vec3 N, vec3 X, vec3 Y ) { return vec3(a); }\n::end shader\n",
+         ".brdf:"},
+        {"analytic\n::begin parameters\nfloat a 0 1 nan\n::end parameters\n::begin shader\nvec3 BRDF( vec3 L, vec3 V, "
+         "vec3 N, vec3 X, vec3 Y ) { return vec3(a); }\n::end shader\n",
+         ".brdf:"},
         {"analytic\n::begin shader\nvoid main() {}\n::end shader\n", ".brdf:"},
         {"analytic\n::end shader\n", ".brdf:"},
         {"analytic\n::begin shader\n::begin shader\n::end shader\n", ".brdf:"},
@@ -223,16 +239,19 @@ std::vector<Case> brdfCases(Scratch& s) {
                      "signal 11 (SIGSEGV, Segmentation fault): the GL driver crashed on this shader; its last output: "
                      "'test: simulated shader compiler crash'",
                      "HILITE_TEST_PROBE_SIGNAL=11"});
-    cases.push_back({"measure --size 32 --brdf {d}/ok.brdf", 2, "killed by signal 6 (SIGABRT", "HILITE_TEST_PROBE_SIGNAL=6"});
+    cases.push_back(
+        {"measure --size 32 --brdf {d}/ok.brdf", 2, "killed by signal 6 (SIGABRT", "HILITE_TEST_PROBE_SIGNAL=6"});
     cases.push_back({"render --size 32 --brdf {d}/ok.brdf -o {d}/new.png", 2, "{d}/ok.brdf: the shader probe",
                      "HILITE_TEST_PROBE_SIGNAL=6"});
-    cases.push_back({"run {d}/brdfexp.toml -o {d}/probe", 2, "{d}/ok.brdf: the shader probe", "HILITE_TEST_PROBE_SIGNAL=9"});
+    cases.push_back(
+        {"run {d}/brdfexp.toml -o {d}/probe", 2, "{d}/ok.brdf: the shader probe", "HILITE_TEST_PROBE_SIGNAL=9"});
     return cases;
 }
 
 std::vector<Case> ndfCases(Scratch& s) {
     std::vector<Case> cases;
-    const std::vector<std::pair<std::string, std::string>> files = {  // text, the line expected
+    const std::vector<std::pair<std::string, std::string>> files = {
+        // text, the line expected
         {"", ""},
         {"theta_h_deg, D\n", ""},
         {"0, 1\n", ":1"},
@@ -509,8 +528,10 @@ TEST_CASE("cli::hostile --resume after editing the experiment is refused, naming
     const Result r = hilite("run " + (d / "tiny.toml") + " -o " + (d / "r") + " --resume");
     CHECK(r.code == 2);
     CHECK(lines(r.out) == 1);
-    CHECK(r.out.find("results.jsonl:2: row 2 (configuration 1) was measured with incidence = 30, the experiment now says 45") !=
-          std::string::npos);
+    CHECK(
+        r.out.find(
+            "results.jsonl:2: row 2 (configuration 1) was measured with incidence = 30, the experiment now says 45") !=
+        std::string::npos);
     CHECK(slurp(d / "r/results.jsonl") == before);
     // A material change shows in its column too; a comment or key order change is no change at all.
     d.write("tiny.toml", std::string("# a comment\n") + kSmall);
@@ -540,7 +561,8 @@ TEST_CASE("cli::hostile merge of shards of different experiments is refused befo
     std::ofstream(d / "s3/results.jsonl", std::ios::trunc) << foreign.at(0) << "\n";
     const Result f = hilite("merge " + (d / "s1") + " " + (d / "s3") + " -o " + (d / "m"));
     CHECK(f.code == 2);
-    CHECK(f.out.find("s3/results.jsonl:1: row 1 (configuration 1) was measured with incidence = 45") != std::string::npos);
+    CHECK(f.out.find("s3/results.jsonl:1: row 1 (configuration 1) was measured with incidence = 45") !=
+          std::string::npos);
     CHECK_FALSE(fs::exists(d / "m"));
 }
 

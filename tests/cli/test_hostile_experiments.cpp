@@ -79,7 +79,8 @@ const std::vector<Case>& cases() {
         {"name with a tab", kNoExperiment + "[experiment]\nname = \"a\\tb\" # <-\n", "experiment.name"},
         {"name = .hidden", kNoExperiment + "[experiment]\nname = \".hidden\" # <-\n", "experiment.name"},
         {"name = -rf", kNoExperiment + "[experiment]\nname = \"-rf\" # <-\n", "experiment.name"},
-        {"name of 300 bytes", kNoExperiment + "[experiment]\nname = \"" + std::string(300, 'a') + "\" # <-\n", "experiment.name"},
+        {"name of 300 bytes", kNoExperiment + "[experiment]\nname = \"" + std::string(300, 'a') + "\" # <-\n",
+         "experiment.name"},
         {"title = 3", kNoExperiment + "[experiment]\ntitle = 3 # <-\n", "experiment.title"},
         {"description = []", kNoExperiment + "[experiment]\ndescription = [] # <-\n", "experiment.description"},
         {"nmae (did you mean name)", kNoExperiment + "[experiment]\nnmae = \"x\" # <-\n", "experiment.nmae"},
@@ -91,59 +92,91 @@ const std::vector<Case>& cases() {
         {"scene model unknown", base("[scene.material]\nmodel = \"gggx\" # <-\n"), "material.model"},
         {"scene key in the wrong table", base("[scene.light]\nroughness = 0.1 # <-\n"), "light.roughness"},
         {"incidence list per configuration (found after rows before)",
-         kNoSweep + "[scene.light]\nincidence = \"0:30:10\" # <-\n[[sweep]]\nkey = \"material.model\"\nvalues = [\"ggx\"]\n",
+         kNoSweep +
+             "[scene.light]\nincidence = \"0:30:10\" # <-\n[[sweep]]\nkey = \"material.model\"\nvalues = [\"ggx\"]\n",
          "light.incidence"},
         {"incidence list as an array per configuration",
-         kNoSweep + "[scene.light]\nincidence = [0, 30] # <-\n[[sweep]]\nkey = \"material.model\"\nvalues = [\"ggx\"]\n",
+         kNoSweep +
+             "[scene.light]\nincidence = [0, 30] # <-\n[[sweep]]\nkey = \"material.model\"\nvalues = [\"ggx\"]\n",
          "light.incidence"},
         {"incidence range as a sweep value",
          kNoSweep + "[[sweep]]\nkey = \"light.incidence\"\nvalues = [\"0:30:10\"] # <-\n", "light.incidence"},
         // -- [[sweep]]
-        {"values and range", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [0.1] # <-\nrange = [0, 1, 0.5]\n"), "sweep.values"},
-        {"values and cases", base("[[sweep]]\nkey = \"s\"\nvalues = [0.1] # <-\ncases = [{ name = \"a\" }]\n"), "sweep.values"},
+        {"values and range",
+         base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [0.1] # <-\nrange = [0, 1, 0.5]\n"), "sweep.values"},
+        {"values and cases", base("[[sweep]]\nkey = \"s\"\nvalues = [0.1] # <-\ncases = [{ name = \"a\" }]\n"),
+         "sweep.values"},
         {"neither values nor range", base("[[sweep]]\nkey = \"material.roughness\" # <-\n"), "sweep.key"},
-        {"valuse (did you mean values)", base("[[sweep]]\nkey = \"material.roughness\"\nvaluse = [0.1] # <-\n"), "sweep.valuse"},
+        {"valuse (did you mean values)", base("[[sweep]]\nkey = \"material.roughness\"\nvaluse = [0.1] # <-\n"),
+         "sweep.valuse"},
         {"no key", base("[[sweep]] # <-\nvalues = [0.1]\n"), "sweep.key"},
         {"key = 5", base("[[sweep]]\nkey = 5 # <-\nvalues = [0.1]\n"), "sweep.key"},
         {"key = empty", base("[[sweep]]\nkey = \"\" # <-\nvalues = [0.1]\n"), "sweep.key"},
         {"key without a table", base("[[sweep]]\nkey = \"roughness\"\nvalues = [0.1] # <-\n"), "roughness"},
         {"key misspelt", base("[[sweep]]\nkey = \"material.roughnes\"\nvalues = [0.1] # <-\n"), "material.roughnes"},
-        {"key in an unknown table", base("[[sweep]]\nkey = \"materail.roughness\"\nvalues = [0.1] # <-\n"), "materail.roughness"},
+        {"key in an unknown table", base("[[sweep]]\nkey = \"materail.roughness\"\nvalues = [0.1] # <-\n"),
+         "materail.roughness"},
         {"values = 3", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = 3 # <-\n"), "sweep.values"},
         {"values = []", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [] # <-\n"), "sweep.values"},
-        {"values = [a table]", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [{ a = 1 }] # <-\n"), "material.roughness"},
-        {"values = [a word]", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [0.1, \"x\"] # <-\n"), "material.roughness"},
+        {"values = [a table]", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [{ a = 1 }] # <-\n"),
+         "material.roughness"},
+        {"values = [a word]", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [0.1, \"x\"] # <-\n"),
+         "material.roughness"},
         {"values = [-1]", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [-1] # <-\n"), "material.roughness"},
-        {"values = [nan]", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [nan] # <-\n"), "material.roughness"},
-        {"model misspelt in values", base("[[sweep]]\nkey = \"material.model\"\nvalues = [\"gggx\"] # <-\n"), "material.model"},
+        {"values = [nan]", base("[[sweep]]\nkey = \"material.roughness\"\nvalues = [nan] # <-\n"),
+         "material.roughness"},
+        {"model misspelt in values", base("[[sweep]]\nkey = \"material.model\"\nvalues = [\"gggx\"] # <-\n"),
+         "material.model"},
         {"an empty param list", base("[[sweep]]\nkey = \"material.param\"\nvalues = [[]] # <-\n"), "material.param"},
         {"range of two", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, 1] # <-\n"), "sweep.range"},
         {"range backwards", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [1, 0, 0.1] # <-\n"), "sweep.range"},
         {"range step 0", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, 1, 0] # <-\n"), "sweep.range"},
-        {"range step negative", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, 1, -1] # <-\n"), "sweep.range"},
-        {"range of words", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [\"a\", 1, 2] # <-\n"), "sweep.range"},
+        {"range step negative", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, 1, -1] # <-\n"),
+         "sweep.range"},
+        {"range of words", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [\"a\", 1, 2] # <-\n"),
+         "sweep.range"},
         {"range to nan", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, nan, 1] # <-\n"), "sweep.range"},
         {"range to inf", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, inf, 1] # <-\n"), "sweep.range"},
-        {"range of 1e18 values", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, 1e12, 1e-6] # <-\n"), "sweep.range"},
-        {"range = a string", base("[[sweep]]\nkey = \"material.roughness\"\nrange = \"0:1:0.1\" # <-\n"), "sweep.range"},
+        {"range of 1e18 values", base("[[sweep]]\nkey = \"material.roughness\"\nrange = [0, 1e12, 1e-6] # <-\n"),
+         "sweep.range"},
+        {"range = a string", base("[[sweep]]\nkey = \"material.roughness\"\nrange = \"0:1:0.1\" # <-\n"),
+         "sweep.range"},
         {"cases = []", base("[[sweep]]\nkey = \"s\"\ncases = [] # <-\n"), "sweep.cases"},
         {"cases = [1]", base("[[sweep]]\nkey = \"s\"\ncases = [1] # <-\n"), "sweep.cases"},
-        {"a case without a name", base("[[sweep]]\nkey = \"s\"\ncases = [{ material = { roughness = 0.1 } }] # <-\n"), "sweep.cases.name"},
+        {"a case without a name", base("[[sweep]]\nkey = \"s\"\ncases = [{ material = { roughness = 0.1 } }] # <-\n"),
+         "sweep.cases.name"},
         {"a case name = 3", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = 3 }] # <-\n"), "sweep.cases.name"},
-        {"two cases named alike", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\" }, { name = \"a\" }] # <-\n"), "sweep.cases.name"},
-        {"case tags = 3", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = 3 }] # <-\n"), "sweep.cases.tags"},
-        {"case reference = 3", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", reference = 3 }] # <-\n"), "sweep.cases.reference"},
-        {"case with a stray key", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", colour = 1 }] # <-\n"), "sweep.cases.colour"},
-        {"case scene key misspelt", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", material = { roughnes = 0.1 } }] # <-\n"), "material.roughnes"},
-        {"case tag an array", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { k = [1] } }] # <-\n"), "sweep.cases.tags.k"},
-        {"case tag inf", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { k = inf } }] # <-\n"), "sweep.cases.tags.k"},
-        {"case tag named config", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { config = 1 } }] # <-\n"), "sweep.cases.tags.config"},
-        {"case reference table unknown", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", reference = { lights = 1 } }] # <-\n"), "sweep.cases.reference.lights"},
+        {"two cases named alike", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\" }, { name = \"a\" }] # <-\n"),
+         "sweep.cases.name"},
+        {"case tags = 3", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = 3 }] # <-\n"),
+         "sweep.cases.tags"},
+        {"case reference = 3", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", reference = 3 }] # <-\n"),
+         "sweep.cases.reference"},
+        {"case with a stray key", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", colour = 1 }] # <-\n"),
+         "sweep.cases.colour"},
+        {"case scene key misspelt",
+         base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", material = { roughnes = 0.1 } }] # <-\n"),
+         "material.roughnes"},
+        {"case tag an array", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { k = [1] } }] # <-\n"),
+         "sweep.cases.tags.k"},
+        {"case tag inf", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { k = inf } }] # <-\n"),
+         "sweep.cases.tags.k"},
+        {"case tag named config",
+         base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { config = 1 } }] # <-\n"),
+         "sweep.cases.tags.config"},
+        {"case reference table unknown",
+         base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", reference = { lights = 1 } }] # <-\n"),
+         "sweep.cases.reference.lights"},
         {"case axis named config", base("[[sweep]]\nkey = \"config\" # <-\ncases = [{ name = \"a\" }]\n"), "sweep.key"},
-        {"case axis named like a parameter", base("[[sweep]]\nkey = \"roughness\" # <-\ncases = [{ name = \"a\" }]\n"), "sweep.key"},
-        {"case tag named like a measurement", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { aspect = 1 } }] # <-\n"), "sweep.cases"},
-        {"case tag named like the axis", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { s = 1 } }] # <-\n"), "sweep.cases.tags.s"},
-        {"case roughness a word", base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", material = { roughness = \"x\" } }] # <-\n"), "material.roughness"},
+        {"case axis named like a parameter", base("[[sweep]]\nkey = \"roughness\" # <-\ncases = [{ name = \"a\" }]\n"),
+         "sweep.key"},
+        {"case tag named like a measurement",
+         base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { aspect = 1 } }] # <-\n"), "sweep.cases"},
+        {"case tag named like the axis",
+         base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", tags = { s = 1 } }] # <-\n"), "sweep.cases.tags.s"},
+        {"case roughness a word",
+         base("[[sweep]]\nkey = \"s\"\ncases = [{ name = \"a\", material = { roughness = \"x\" } }] # <-\n"),
+         "material.roughness"},
         // -- [[plot]]
         {"plot fiel (did you mean file)", base("[[plot]]\nfiel = \"a.png\" # <-\n"), "plot.fiel"},
         {"plot file ../x.png", base("[[plot]]\nfile = \"../x.png\" # <-\n"), "plot.file"},
@@ -161,15 +194,18 @@ const std::vector<Case>& cases() {
         {"plot file = 3", base("[[plot]]\nfile = 3 # <-\n"), "plot.file"},
         {"plot file only .png", base("[[plot]]\nfile = \"png\" # <-\n"), "plot.file"},
         {"two plots named alike", base("[[plot]]\nfile = \"a.png\"\n[[plot]]\nfile = \"a.png\" # <-\n"), "plot.file"},
-        {"two plots by default name", base("[[plot]]\ny = \"aspect\"\n[[plot]] # <-\ny = \"eccentricity\"\n"), "plot.file"},
+        {"two plots by default name", base("[[plot]]\ny = \"aspect\"\n[[plot]] # <-\ny = \"eccentricity\"\n"),
+         "plot.file"},
         {"plot and pareto named alike",
-         base("[[sweep]]\nkey = \"setting\"\ncases = [{ name = \"a\", tags = { knob = \"k\" } }]\n[timing]\n[[plot]]\nfile = \"x.png\"\n"
+         base("[[sweep]]\nkey = \"setting\"\ncases = [{ name = \"a\", tags = { knob = \"k\" } "
+              "}]\n[timing]\n[[plot]]\nfile = \"x.png\"\n"
               "[[pareto]]\nfile = \"x.png\" # <-\n"),
          "pareto.file"},
         {"plot named like a strip's Fresnel plot",
          base("[[plot]]\nfile = \"copper_fresnel.png\"\n[[strip]]\nmaterial = \"copper\" # <-\n"), "strip.material"},
         {"plot named like the contact sheet",
-         base("[[plot]]\nfile = \"sheet.png\"\n[contact_sheet]\nfile = \"sheet.png\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"),
+         base("[[plot]]\nfile = \"sheet.png\"\n[contact_sheet]\nfile = \"sheet.png\" # <-\nrows = [\"ggx\"]\ncolumns = "
+              "[0]\n"),
          "contact_sheet.file"},
         {"plot x not a row field", base("[[plot]]\nx = \"incidence_degs\" # <-\n"), "plot.x"},
         {"plot y = 3", base("[[plot]]\ny = 3 # <-\n"), "plot.y"},
@@ -188,10 +224,13 @@ const std::vector<Case>& cases() {
         {"theory a string", base("[[plot]]\ntheory = \"cos(x)\" # <-\n"), "plot.theory"},
         {"theory one string", base("[[plot]]\ntheory = [[\"a\"]] # <-\n"), "plot.theory"},
         {"theory expression a number", base("[[plot]]\ntheory = [[\"a\", 1]] # <-\n"), "plot.theory"},
-        {"theory system()", base("[[plot]]\ntheory = [[\"a\", \"system(\\\"touch /tmp/hilite-th\\\")\"]] # <-\n"), "plot.theory"},
+        {"theory system()", base("[[plot]]\ntheory = [[\"a\", \"system(\\\"touch /tmp/hilite-th\\\")\"]] # <-\n"),
+         "plot.theory"},
         {"theory backticks", base("[[plot]]\ntheory = [[\"a\", \"`touch /tmp/hilite-th`\"]] # <-\n"), "plot.theory"},
-        {"theory newline then !cmd", base("[[plot]]\ntheory = [[\"a\", \"1\\n!touch /tmp/hilite-th\"]] # <-\n"), "plot.theory"},
-        {"theory then a plot command", base("[[plot]]\ntheory = [[\"a\", \"1 with lines, '/etc/passwd'\"]] # <-\n"), "plot.theory"},
+        {"theory newline then !cmd", base("[[plot]]\ntheory = [[\"a\", \"1\\n!touch /tmp/hilite-th\"]] # <-\n"),
+         "plot.theory"},
+        {"theory then a plot command", base("[[plot]]\ntheory = [[\"a\", \"1 with lines, '/etc/passwd'\"]] # <-\n"),
+         "plot.theory"},
         {"theory unknown variable", base("[[plot]]\ntheory = [[\"a\", \"y*2\"]] # <-\n"), "plot.theory"},
         {"theory assignment", base("[[plot]]\ntheory = [[\"a\", \"x=1\"]] # <-\n"), "plot.theory"},
         {"theory a list", base("[[plot]]\ntheory = [[\"a\", \"1,2\"]] # <-\n"), "plot.theory"},
@@ -204,31 +243,49 @@ const std::vector<Case>& cases() {
         {"sheet without columns", base("[contact_sheet] # <-\nrows = [\"ggx\"]\n"), "contact_sheet.columns"},
         {"sheet rows = []", base("[contact_sheet]\nrows = [] # <-\ncolumns = [0]\n"), "contact_sheet.rows"},
         {"sheet fov 0", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [0]\nfov = 0 # <-\n"), "contact_sheet.fov"},
-        {"sheet fov a word", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [0]\nfov = \"wide\" # <-\n"), "contact_sheet.fov"},
-        {"sheet fov a table", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [0]\nfov = { a = 1 } # <-\n"), "contact_sheet.fov"},
+        {"sheet fov a word", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [0]\nfov = \"wide\" # <-\n"),
+         "contact_sheet.fov"},
+        {"sheet fov a table", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [0]\nfov = { a = 1 } # <-\n"),
+         "contact_sheet.fov"},
         {"sheet rows a string", base("[contact_sheet]\nrows = \"ggx\" # <-\ncolumns = [0]\n"), "contact_sheet.rows"},
-        {"sheet row_key misspelt", base("[contact_sheet]\nrow_key = \"material.modle\"\nrows = [\"ggx\"] # <-\ncolumns = [0]\n"), "material.modle"},
-        {"sheet row value unknown (found after rows before)", base("[contact_sheet]\nrows = [\"gggx\"] # <-\ncolumns = [0]\n"), "material.model"},
-        {"sheet column value out of range", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [0, 95] # <-\n"), "light.incidence"},
-        {"sheet column a range", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [\"0:30:10\"] # <-\n"), "light.incidence"},
-        {"sheet size a word", base("[contact_sheet]\nsize = \"huge\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"), "contact_sheet.size"},
-        {"sheet size 0", base("[contact_sheet]\nsize = \"0\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"), "contact_sheet.size"},
-        {"sheet size = [3]", base("[contact_sheet]\nsize = [3] # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"), "contact_sheet.size"},
-        {"sheet file outside", base("[contact_sheet]\nfile = \"../sheet.png\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"), "contact_sheet.file"},
-        {"sheet fiel", base("[contact_sheet]\nfiel = \"s.png\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"), "contact_sheet.fiel"},
-        {"sheet of 65 rows", base("[contact_sheet]\nrow_key = \"material.roughness\"\nrows = [" + [] {
-             std::string v;
-             for (int i = 0; i < 65; ++i) v += (i ? ", " : "") + std::to_string(0.01 * (i + 1));
-             return v;
-         }() + "] # <-\ncolumns = [0]\n"), "contact_sheet.rows"},
-        {"sheet row_key = 1", base("[contact_sheet]\nrow_key = 1 # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"), "contact_sheet.row_key"},
+        {"sheet row_key misspelt",
+         base("[contact_sheet]\nrow_key = \"material.modle\"\nrows = [\"ggx\"] # <-\ncolumns = [0]\n"),
+         "material.modle"},
+        {"sheet row value unknown (found after rows before)",
+         base("[contact_sheet]\nrows = [\"gggx\"] # <-\ncolumns = [0]\n"), "material.model"},
+        {"sheet column value out of range", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [0, 95] # <-\n"),
+         "light.incidence"},
+        {"sheet column a range", base("[contact_sheet]\nrows = [\"ggx\"]\ncolumns = [\"0:30:10\"] # <-\n"),
+         "light.incidence"},
+        {"sheet size a word", base("[contact_sheet]\nsize = \"huge\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"),
+         "contact_sheet.size"},
+        {"sheet size 0", base("[contact_sheet]\nsize = \"0\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"),
+         "contact_sheet.size"},
+        {"sheet size = [3]", base("[contact_sheet]\nsize = [3] # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"),
+         "contact_sheet.size"},
+        {"sheet file outside", base("[contact_sheet]\nfile = \"../sheet.png\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"),
+         "contact_sheet.file"},
+        {"sheet fiel", base("[contact_sheet]\nfiel = \"s.png\" # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"),
+         "contact_sheet.fiel"},
+        {"sheet of 65 rows",
+         base("[contact_sheet]\nrow_key = \"material.roughness\"\nrows = [" +
+              [] {
+                  std::string v;
+                  for (int i = 0; i < 65; ++i) v += (i ? ", " : "") + std::to_string(0.01 * (i + 1));
+                  return v;
+              }() +
+              "] # <-\ncolumns = [0]\n"),
+         "contact_sheet.rows"},
+        {"sheet row_key = 1", base("[contact_sheet]\nrow_key = 1 # <-\nrows = [\"ggx\"]\ncolumns = [0]\n"),
+         "contact_sheet.row_key"},
         // -- [[strip]]
         {"strip without material", base("[[strip]] # <-\nfile = \"s.png\"\n"), "strip.material"},
         {"strip material unknown", base("[[strip]]\nmaterial = \"unobtainium\" # <-\n"), "strip.material"},
         {"strip material = 1", base("[[strip]]\nmaterial = 1 # <-\n"), "strip.material"},
         {"strip file outside", base("[[strip]]\nmaterial = \"copper\"\nfile = \"../s.png\" # <-\n"), "strip.file"},
         {"strip colour", base("[[strip]]\nmaterial = \"copper\"\ncolour = \"red\" # <-\n"), "strip.colour"},
-        {"two strips of one material", base("[[strip]]\nmaterial = \"copper\"\n[[strip]] # <-\nmaterial = \"copper\"\n"), "strip.file"},
+        {"two strips of one material",
+         base("[[strip]]\nmaterial = \"copper\"\n[[strip]] # <-\nmaterial = \"copper\"\n"), "strip.file"},
         // -- [summary]
         {"summary serie", base("[summary]\nserie = \"model\" # <-\n"), "summary.serie"},
         {"summary series = 1", base("[summary]\nseries = 1 # <-\n"), "summary.series"},
@@ -251,10 +308,14 @@ const std::vector<Case>& cases() {
         {"pareto targets words", base("[[pareto]]\ntargets = [\"a\"] # <-\n"), "pareto.targets"},
         {"pareto targets inf", base("[[pareto]]\ntargets = [inf] # <-\n"), "pareto.targets"},
         {"pareto setting not a row field (no case axis)", base("[[pareto]] # <-\n"), "pareto.setting"},
-        {"pareto error not a row field", base("[[sweep]]\nkey = \"setting\"\ncases = [{ name = \"a\", tags = { knob = \"k\" } }]\n"
-                                              "[timing]\n[[pareto]]\nerror = \"aspect_eror\" # <-\n"), "pareto.error"},
-        {"pareto time without [timing]", base("[[sweep]]\nkey = \"setting\"\ncases = [{ name = \"a\", tags = { knob = \"k\" } }]\n"
-                                              "[[pareto]]\nerror = \"aspect\"\ntime = \"time_ms\" # <-\n"), "pareto.time"},
+        {"pareto error not a row field",
+         base("[[sweep]]\nkey = \"setting\"\ncases = [{ name = \"a\", tags = { knob = \"k\" } }]\n"
+              "[timing]\n[[pareto]]\nerror = \"aspect_eror\" # <-\n"),
+         "pareto.error"},
+        {"pareto time without [timing]",
+         base("[[sweep]]\nkey = \"setting\"\ncases = [{ name = \"a\", tags = { knob = \"k\" } }]\n"
+              "[[pareto]]\nerror = \"aspect\"\ntime = \"time_ms\" # <-\n"),
+         "pareto.time"},
         {"match table misspelt", base("[match]\n[match.materail] # <-\nmodel = \"ggx\"\n"), "materail"},
         {"match material = 1", base("[match]\nmaterial = 1 # <-\n"), "material"},
         // -- TOML itself
@@ -342,9 +403,10 @@ TEST_CASE("cli::run late errors are found before a real previous result set is t
     const std::string good = d.write("good.toml", base("[[plot]]\nfile = \"aspect.png\"\n"));
     REQUIRE(hilite_test::hilite("run " + good + " -o " + (d / "out")).code == 0);
     REQUIRE(fs::exists(d / "out/results.jsonl"));
-    for (const char* late : {"[contact_sheet]\nrows = [\"gggx\"]\ncolumns = [0]\n", "[[plot]]\nfile = \"b.png\"\ny = \"aspekt\"\n",
-                             "[contact_sheet]\nsize = \"0\"\nrows = [\"ggx\"]\ncolumns = [0]\n",
-                             "[scene.light]\nincidence = \"0:30:10\"\n[[sweep]]\nkey = \"material.model\"\nvalues = [\"ggx\"]\n"}) {
+    for (const char* late :
+         {"[contact_sheet]\nrows = [\"gggx\"]\ncolumns = [0]\n", "[[plot]]\nfile = \"b.png\"\ny = \"aspekt\"\n",
+          "[contact_sheet]\nsize = \"0\"\nrows = [\"ggx\"]\ncolumns = [0]\n",
+          "[scene.light]\nincidence = \"0:30:10\"\n[[sweep]]\nkey = \"material.model\"\nvalues = [\"ggx\"]\n"}) {
         CAPTURE(late);
         const std::string text = std::string(late).find("[scene.light]") == 0 ? kNoSweep + late : base(late);
         const std::string bad = d.write("bad.toml", text);
@@ -362,13 +424,17 @@ TEST_CASE("cli::run late errors are found before a real previous result set is t
 
 TEST_CASE("cli::run unknown keys name the closest allowed one and list them all") {
     hilite_test::TempDir d("hilite-hostile-hint");
-    const auto r = hilite_test::hilite("run " + d.write("e.toml", base("[[plot]]\nfiel = \"a.png\"\n")) + " -o " + (d / "o"));
+    const auto r =
+        hilite_test::hilite("run " + d.write("e.toml", base("[[plot]]\nfiel = \"a.png\"\n")) + " -o " + (d / "o"));
     CHECK(r.code == 2);
-    CHECK(r.out.find("plot.fiel: unknown key, did you mean 'file'? (allowed: file, title, x, y, series") != std::string::npos);
-    const auto s = hilite_test::hilite("run " + d.write("s.toml", kNoSweep + "[sweep]\nkey = \"light.incidence\"\nvalues = [0]\n") +
-                                       " -o " + (d / "o"));
+    CHECK(r.out.find("plot.fiel: unknown key, did you mean 'file'? (allowed: file, title, x, y, series") !=
+          std::string::npos);
+    const auto s = hilite_test::hilite(
+        "run " + d.write("s.toml", kNoSweep + "[sweep]\nkey = \"light.incidence\"\nvalues = [0]\n") + " -o " +
+        (d / "o"));
     CHECK(s.out.find("sweep: write it as [[sweep]] tables") != std::string::npos);
-    const auto k = hilite_test::hilite("run " + d.write("k.toml", base("[[plot]]\nkey = \"bottom\"\n")) + " -o " + (d / "o"));
+    const auto k =
+        hilite_test::hilite("run " + d.write("k.toml", base("[[plot]]\nkey = \"bottom\"\n")) + " -o " + (d / "o"));
     CHECK(k.out.find("(allowed: top left, top center, top right") != std::string::npos);
     CHECK_FALSE(fs::exists(d / "o"));
 }
@@ -380,14 +446,22 @@ TEST_CASE("cli::run plot titles, labels, series and theory titles are data: noth
     const std::string mark = (d / "pwned");
     const std::string tick = "`touch " + mark + "1`", bang = "\\n!touch " + mark + "2\\n",
                       sys = "system(\\\"touch " + mark + "3\\\")", quote = "it''s";
-    const std::string text = "[experiment]\nname = \"inject\"\n[scene.camera]\nsize = 32\n"
-                             "[[sweep]]\nkey = \"series\"\ncases = [{ name = \"A " + tick + "\", material = { model = \"ggx\" } },"
-                             " { name = \"B " + bang + "\", material = { model = \"phong\" } }]\n"
-                             "[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 60]\n"
-                             "[[plot]]\nfile = \"aspect.png\"\nseries = \"series\"\n"
-                             "title = \"T " + tick + " " + sys + " it's\"\nxlabel = \"X " + bang + "\"\nylabel = \"Y " + sys + "\"\n"
-                             "key = \"top right\"\n"
-                             "theory = [[\"cos " + tick + bang + sys + "\", \"cos(x*pi/180)\"], [\"half\", \"0.5\"]]\n";
+    const std::string text =
+        "[experiment]\nname = \"inject\"\n[scene.camera]\nsize = 32\n"
+        "[[sweep]]\nkey = \"series\"\ncases = [{ name = \"A " +
+        tick +
+        "\", material = { model = \"ggx\" } },"
+        " { name = \"B " +
+        bang +
+        "\", material = { model = \"phong\" } }]\n"
+        "[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 60]\n"
+        "[[plot]]\nfile = \"aspect.png\"\nseries = \"series\"\n"
+        "title = \"T " +
+        tick + " " + sys + " it's\"\nxlabel = \"X " + bang + "\"\nylabel = \"Y " + sys +
+        "\"\n"
+        "key = \"top right\"\n"
+        "theory = [[\"cos " +
+        tick + bang + sys + "\", \"cos(x*pi/180)\"], [\"half\", \"0.5\"]]\n";
     const auto r = hilite_test::hilite("run " + d.write("inject.toml", text) + " -o " + (d / "out"));
     CAPTURE(r.out);
     REQUIRE(r.code == 0);
@@ -405,7 +479,7 @@ TEST_CASE("cli::run plot titles, labels, series and theory titles are data: noth
     CHECK(gp.find("title 'cos " + t + b + s + "'") != std::string::npos);
     CHECK(gp.find("set key top right box opaque\n") != std::string::npos);
     CHECK(gp.find("cos(") == std::string::npos);  // the theory is data, not a gnuplot expression
-    CHECK(gp.find('"') == gp.find("\"touch"));   // no double-quoted gnuplot string anywhere but inside the texts
+    CHECK(gp.find('"') == gp.find("\"touch"));    // no double-quoted gnuplot string anywhere but inside the texts
     // No line of the script starts with '!' (a shell command) and each line is one command.
     std::istringstream lines(gp);
     for (std::string l; std::getline(lines, l);) CHECK((l.empty() || l[0] != '!'));

@@ -40,7 +40,8 @@ std::vector<nlohmann::json> rows(const std::string& out) {
 
 TEST_CASE("measured: the row says measured:FILE, carries the path and none of the analytic terms") {
     Table t;
-    const auto r = hilite_test::hilite("measure --measured " + t.file + " --incidence 30 --renderer cpu --size 64 --json", true);
+    const auto r =
+        hilite_test::hilite("measure --measured " + t.file + " --incidence 30 --renderer cpu --size 64 --json", true);
     REQUIRE(r.code == 0);
     const auto row = nlohmann::json::parse(r.out);
     CHECK(row["model"] == "measured:ggx.binary");
@@ -82,7 +83,8 @@ TEST_CASE("measured: refused with every other material flag, --bumps and for a b
     }
 }
 
-TEST_CASE("measured: GGX 0.1 tabulated and measured matches the analytic GGX at 0-80 deg within the row's table_error") {
+TEST_CASE(
+    "measured: GGX 0.1 tabulated and measured matches the analytic GGX at 0-80 deg within the row's table_error") {
     // The round trip of the issue: GGX 0.1 (Smith, Schlick 0.04) -> MERL table -> measured, against the analytic
     // model measured the same way. Measured here (GL, 512^2): |d aspect| 6e-10, 2.6e-5, 6.5e-5, 6.2e-5, 5.0e-5,
     // 1.6e-4 at 0-50 deg, 0.0191 at 60 (a region in two parts: the horizon strip rides on the table's last
@@ -129,7 +131,8 @@ TEST_CASE("measured: the GL measurement of the table agrees with the CPU twin's 
     // against doubles).
     Table t;
     const std::string args = "measure --measured " + t.file + " --incidence 0,20,40,60,80 --json --renderer ";
-    const auto gl = rows(hilite_test::hilite(args + "gl", true).out), cpu = rows(hilite_test::hilite(args + "cpu", true).out);
+    const auto gl = rows(hilite_test::hilite(args + "gl", true).out),
+               cpu = rows(hilite_test::hilite(args + "cpu", true).out);
     REQUIRE(gl.size() == 5);
     REQUIRE(cpu.size() == 5);
     for (size_t i = 0; i < 5; ++i) {
@@ -142,11 +145,15 @@ TEST_CASE("measured: the GL measurement of the table agrees with the CPU twin's 
 
 TEST_CASE("measured: material.measured sweeps in an experiment like any key, paths beside the experiment file") {
     Table t;
-    REQUIRE(hilite_test::hilite("brdf tabulate --model beckmann --roughness 0.2 -o " + (t.dir / "beck.binary")).code == 0);
-    { std::ofstream(t.dir / "sweep.toml") << "[experiment]\nname = \"measured_sweep\"\ntitle = \"t\"\ndescription = \"d\"\n"
-                                             "[scene.camera]\nsize = \"128\"\n[scene.measurement]\nrenderer = \"cpu\"\n"
-                                             "[[sweep]]\nkey = \"material.measured\"\nvalues = [\"ggx.binary\", \"beck.binary\"]\n"
-                                             "[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 40]\n"; }
+    REQUIRE(hilite_test::hilite("brdf tabulate --model beckmann --roughness 0.2 -o " + (t.dir / "beck.binary")).code ==
+            0);
+    {
+        std::ofstream(t.dir / "sweep.toml")
+            << "[experiment]\nname = \"measured_sweep\"\ntitle = \"t\"\ndescription = \"d\"\n"
+               "[scene.camera]\nsize = \"128\"\n[scene.measurement]\nrenderer = \"cpu\"\n"
+               "[[sweep]]\nkey = \"material.measured\"\nvalues = [\"ggx.binary\", \"beck.binary\"]\n"
+               "[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 40]\n";
+    }
     const auto r = hilite_test::hilite("run " + (t.dir / "sweep.toml") + " -o " + (t.dir / "out"));
     REQUIRE(r.code == 0);
     std::ifstream in(t.dir / "out/results.jsonl");

@@ -3,8 +3,8 @@
 
 #include "support/run_hilite.hpp"
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/merl.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <doctest/doctest.h>
 
@@ -16,8 +16,10 @@ namespace merl = hilite::brdf::merl;
 TEST_CASE("cli::brdf tabulate: GGX 0.1 smith schlick as a MERL file equal to brdf::evaluate at its bin centres") {
     hilite_test::TempDir dir("hilite-tabulate");
     const std::string out = dir / "ggx.binary";
-    const auto r = hilite_test::hilite("brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick "
-                                       "--f0 0.04 -o " + out);
+    const auto r = hilite_test::hilite(
+        "brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick "
+        "--f0 0.04 -o " +
+        out);
     REQUIRE(r.code == 0);
     CHECK(hilite_test::lines(r.out) == 1);
     CHECK(r.out.find("wrote " + out + ": MERL table 90 x 90 x 180") == 0);

@@ -123,8 +123,9 @@ TEST_CASE("cli::run killed part-way and resumed writes the same rows as an unint
 
 TEST_CASE("cli::run a real SIGKILL part-way, then --resume, gives the uninterrupted rows") {
     Dir d;
-    std::ofstream(d / "long.toml") << std::string(kExperiment).replace(kExperiment.find("size = \"96\""), 11, "size = \"768\"")
-                                   << "[[sweep]]\nkey = \"measurement.threshold\"\nvalues = [0.3, 0.5, 0.7]\n";
+    std::ofstream(d / "long.toml")
+        << std::string(kExperiment).replace(kExperiment.find("size = \"96\""), 11, "size = \"768\"")
+        << "[[sweep]]\nkey = \"measurement.threshold\"\nvalues = [0.3, 0.5, 0.7]\n";
     REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "long.toml") + " -o " + (d / "full")) == 0);
     const pid_t pid = fork();
     if (pid == 0) {
@@ -170,8 +171,8 @@ TEST_CASE("cli::merge shards equal a single run, row for row") {
     Dir d;
     REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "small.toml") + " -o " + (d / "single")) == 0);
     for (int k = 1; k <= 3; ++k)
-        REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "small.toml") + " --shard " + std::to_string(k) +
-                   "/3 -o " + (d / ("s" + std::to_string(k)))) == 0);
+        REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "small.toml") + " --shard " + std::to_string(k) + "/3 -o " +
+                   (d / ("s" + std::to_string(k)))) == 0);
     REQUIRE(sh(std::string(HILITE_EXE) + " merge " + (d / "s1") + " " + (d / "s2") + " " + (d / "s3") + " -o " +
                (d / "merged")) == 0);
     CHECK(comparable(readCsv(d / "merged/results.csv")) == comparable(readCsv(d / "single/results.csv")));
@@ -214,7 +215,8 @@ TEST_CASE("experiments shipped in experiments/ all validate") {
 
 TEST_CASE("cli::run --check refuses what a run refuses and writes nothing") {
     Dir d;
-    std::ofstream(d / "bad.toml") << "[experiment]\nname = \"bad\"\n[[sweep]]\nkey = \"material.roughness\"\nvalues = [0.1, -1]\n";
+    std::ofstream(d / "bad.toml")
+        << "[experiment]\nname = \"bad\"\n[[sweep]]\nkey = \"material.roughness\"\nvalues = [0.1, -1]\n";
     using hilite_test::hilite;
     const hilite_test::Result r = hilite("run " + (d / "bad.toml") + " --check -o " + (d / "out"));
     CHECK(r.code == 2);

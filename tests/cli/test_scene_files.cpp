@@ -37,8 +37,9 @@ TEST_CASE("cli::explain every shipped scene resolves and measures") {
 
 TEST_CASE("cli::explain the resolved scene is a scene file that resolves to itself") {
     Tmp t;
-    const auto first = hilite("explain --part scene --model beckmann --roughness 0.2 --fresnel schlick "
-                              "--f0 0.9,0.6,0.3 --incidence 30 --light point --light-distance 2");
+    const auto first = hilite(
+        "explain --part scene --model beckmann --roughness 0.2 --fresnel schlick "
+        "--f0 0.9,0.6,0.3 --incidence 30 --light point --light-distance 2");
     REQUIRE(first.code == 0);
     const std::string file = t.write("resolved.toml", first.out);
     const auto second = hilite("explain --part scene --scene " + file);

@@ -35,9 +35,9 @@ nlohmann::json measureGgx(double incidenceDeg, hilite::scene::Values* other = nu
 
 TEST_CASE("the installed version is the package's") {
     CHECK(std::string(HILITE_VERSION_STRING) == EXPECTED_VERSION);
-    CHECK(std::string(hilite::kVersionString) ==
-          std::to_string(HILITE_VERSION_MAJOR) + "." + std::to_string(HILITE_VERSION_MINOR) + "." +
-              std::to_string(HILITE_VERSION_PATCH));
+    CHECK(std::string(hilite::kVersionString) == std::to_string(HILITE_VERSION_MAJOR) + "." +
+                                                     std::to_string(HILITE_VERSION_MINOR) + "." +
+                                                     std::to_string(HILITE_VERSION_PATCH));
 }
 
 TEST_CASE("the library loaded is the one the headers belong to") {

@@ -2,9 +2,9 @@
 // Shared pieces of the GL tests: one context per backend, and the comparison of rendered pixels
 // against the CPU double twin evaluated at each pixel's exitant direction.
 
+#include "gl/context.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/camera.hpp"
-#include "gl/context.hpp"
 #include "render/renderer.hpp"
 
 #include <doctest/doctest.h>

@@ -2,9 +2,9 @@
 // convergence to the point light (the seed's limit) with its order, the tiny disk as the directional light, and
 // the sun's broadening of a narrow lobe with its diagnoses.
 
-#include "measurement/diagnose.hpp"
 #include "hilite/measurement/measure_scene.hpp"
 #include "hilite/render/area_light.hpp"
+#include "measurement/diagnose.hpp"
 #include "render/cpu_view.hpp"
 
 #include "gl/gl_fixture.hpp"
@@ -79,8 +79,9 @@ TEST_CASE("render::Renderer a disk light's pixels equal the exact twin within 1e
         render::Scene automatic = c.scene;
         automatic.light.rings = 0;
         const test::TwinComparison a = test::compareWithTwin(*env.renderer, automatic, cam);
-        MESSAGE(c.what << ": 8 rings, GL vs exact twin " << t.maxRelError << " over " << t.compared << " pixels; at the "
-                       << render::lightRings(automatic) << " rings chosen for 1e-3 of the peak: " << a.maxRelError);
+        MESSAGE(c.what << ": 8 rings, GL vs exact twin " << t.maxRelError << " over " << t.compared
+                       << " pixels; at the " << render::lightRings(automatic)
+                       << " rings chosen for 1e-3 of the peak: " << a.maxRelError);
         CHECK(t.compared > 500);
         const auto effects = render::activeEffects(c.scene);  // explain names the light and its rule
         CHECK(std::any_of(effects.begin(), effects.end(), [](const std::string& e) {
@@ -101,7 +102,7 @@ TEST_CASE("render::Renderer a disk cut by the horizon: GL and the CPU rule agree
     const double glVsRule = maxRelative(gl, cpu);
     const test::TwinComparison exact = test::compareWithTwin(*env.renderer, s, cam);
     MESSAGE("8 deg disk at 87 deg (the horizon cuts it): GL vs CPU rule " << glVsRule << ", GL (32 rings) vs exact "
-                                                                         << exact.maxRelError);
+                                                                          << exact.maxRelError);
     CHECK(glVsRule < 1e-4);
     CHECK(exact.maxRelError < 1e-3);
 }
@@ -130,9 +131,11 @@ TEST_CASE("render::Renderer the sphere light converges to the point light as R -
         logE.push_back(std::log(e));
     }
     const double n = double(logR.size());
-    const double mx = std::accumulate(logR.begin(), logR.end(), 0.0) / n, my = std::accumulate(logE.begin(), logE.end(), 0.0) / n;
+    const double mx = std::accumulate(logR.begin(), logR.end(), 0.0) / n,
+                 my = std::accumulate(logE.begin(), logE.end(), 0.0) / n;
     double sxy = 0, sxx = 0;
-    for (size_t i = 0; i < logR.size(); ++i) sxy += (logR[i] - mx) * (logE[i] - my), sxx += (logR[i] - mx) * (logR[i] - mx);
+    for (size_t i = 0; i < logR.size(); ++i)
+        sxy += (logR[i] - mx) * (logE[i] - my), sxx += (logR[i] - mx) * (logR[i] - mx);
     const double order = sxy / sxx;
     MESSAGE("order of convergence of the sphere light to the point light: " << order);
     CHECK(order > 1.9);
@@ -152,9 +155,9 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
     // both with the exact reference: experiments/accuracy_cost).
     const render::Scene road = ggx(0.02, 80);
     const analysis::Shape dir = measureShape(road), sun = measureShape(withDisk(road, 0.266)),
-                         fine = measureShape(withDisk(road, 0.266, 16));
+                          fine = measureShape(withDisk(road, 0.266, 16));
     MESSAGE("GGX 0.02 at 80: aspect " << dir.aspect << " (directional) -> " << sun.aspect << " (sun), at 16 rings "
-                                       << fine.aspect);
+                                      << fine.aspect);
     CHECK(sun.aspect - dir.aspect > 0.02);
     CHECK(std::abs(sun.aspect - fine.aspect) < 1e-3);
     CHECK(sun.flags.empty());
@@ -174,14 +177,15 @@ TEST_CASE("measurement::measureGl extreme lights: a disk centred on the horizon,
     // Half of a 2 deg disk lies below the horizon at theta_i = 90 deg: the rule cuts each ray there (its kink in
     // azimuth makes it converge algebraically), the exact twin integrates the visible half.
     render::Scene horizon = withDisk(ggx(0.3, 90), 2.0, 16);
-    CHECK(render::capVisibleFraction(render::lightCap(horizon.light, dvec3(0.0))) == doctest::Approx(0.5).epsilon(1e-5));
+    CHECK(render::capVisibleFraction(render::lightCap(horizon.light, dvec3(0.0))) ==
+          doctest::Approx(0.5).epsilon(1e-5));
     const PinholeCamera cam = measurement::measurementCamera(horizon, horizon.light.chart().wr(), 60.0, 32, 32);
     ImageF gl, cpu;
     env.renderer->render(horizon, cam, render::Output::Measure, gl);
     render::renderMeasureCpu(horizon, cam, cpu);
     const test::TwinComparison exact = test::compareWithTwin(*env.renderer, horizon, cam);
-    MESSAGE("2 deg disk centred on the horizon at 16 rings: GL vs CPU rule " << maxRelative(gl, cpu)
-                                                                            << ", GL vs exact " << exact.maxRelError);
+    MESSAGE("2 deg disk centred on the horizon at 16 rings: GL vs CPU rule " << maxRelative(gl, cpu) << ", GL vs exact "
+                                                                             << exact.maxRelError);
     CHECK(maxRelative(gl, cpu) < 1e-4);
     CHECK(exact.maxRelError < 2e-3);
     // (Measured as a whole by `hilite measure --light disk --light-angle 2 --incidence 90` in ~3 s: the survey of
@@ -194,5 +198,6 @@ TEST_CASE("measurement::measureGl extreme lights: a disk centred on the horizon,
     sphere.light.rings = 4;
     const render::RuleCheck rule = render::lightRule(sphere);
     MESSAGE("sphere R 1.7 at 80 deg, 4 rings: rule error " << rule.error << " of the peak");
-    CHECK(rule.error > measurement::kLightRuleFlag);  // what diagnose() turns into the flag (the test above measures it)
+    CHECK(rule.error >
+          measurement::kLightRuleFlag);  // what diagnose() turns into the flag (the test above measures it)
 }

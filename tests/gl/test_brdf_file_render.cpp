@@ -3,8 +3,8 @@
 
 #include "render/renderer.hpp"
 
-#include "hilite/core/error.hpp"
 #include "gl_fixture.hpp"
+#include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
 
@@ -21,8 +21,8 @@ std::shared_ptr<const brdf_file::BrdfFile> fromText(const std::string& text, con
 }
 
 std::shared_ptr<const brdf_file::BrdfFile> shipped(const std::string& name, const std::string& assignments) {
-    auto f = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(std::string(HILITE_SOURCE_DIR_STR) +
-                                                                    "/experiments/brdfs/" + name + ".brdf"));
+    auto f = std::make_shared<brdf_file::BrdfFile>(
+        brdf_file::load(std::string(HILITE_SOURCE_DIR_STR) + "/experiments/brdfs/" + name + ".brdf"));
     brdf_file::assign(*f, assignments);
     return f;
 }
@@ -57,9 +57,10 @@ TEST_CASE("render::Renderer shipped .brdf files give the built-in models' pixels
         brdf::Model model;
         double param;
     };
-    for (const Case& c : {Case{"phong", "n=1000", brdf::Model::Phong, 1000}, Case{"phong", "n=50", brdf::Model::Phong, 50},
-                          Case{"blinn", "n=300", brdf::Model::Blinn, 300}, Case{"beckmann", "m=0.15", brdf::Model::Beckmann, 0.15},
-                          Case{"ggx", "alpha=0.1", brdf::Model::GGX, 0.1}, Case{"ggx", "alpha=0.01", brdf::Model::GGX, 0.01}}) {
+    for (const Case& c :
+         {Case{"phong", "n=1000", brdf::Model::Phong, 1000}, Case{"phong", "n=50", brdf::Model::Phong, 50},
+          Case{"blinn", "n=300", brdf::Model::Blinn, 300}, Case{"beckmann", "m=0.15", brdf::Model::Beckmann, 0.15},
+          Case{"ggx", "alpha=0.1", brdf::Model::GGX, 0.1}, Case{"ggx", "alpha=0.01", brdf::Model::GGX, 0.01}}) {
         for (double inc : {0.0, 45.0, 80.0}) {
             CAPTURE(c.file);
             CAPTURE(c.param);
@@ -71,9 +72,9 @@ TEST_CASE("render::Renderer shipped .brdf files give the built-in models' pixels
             render::Scene file = builtin;
             file.brdfFile = shipped(c.file, c.assignments);
             // Field of view a few half-widths across: compare where the lobe is, against the built-in's twin.
-            const double fov = std::min(60.0, 6.0 * rad2deg(std::sqrt(2.0 * std::log(2.0) / (brdf::usesExponent(c.model)
-                                                                                                ? c.param
-                                                                                                : 2.0 / (c.param * c.param)))));
+            const double fov = std::min(
+                60.0, 6.0 * rad2deg(std::sqrt(2.0 * std::log(2.0) /
+                                              (brdf::usesExponent(c.model) ? c.param : 2.0 / (c.param * c.param)))));
             const PinholeCamera cam = camera(builtin, fov, 96, 64);
             const ImageF img = test::glEnv().renderer->render(file, cam, render::Output::Color);
             double peak = 0, maxRel = 0;
@@ -98,11 +99,12 @@ TEST_CASE("render::Renderer shipped .brdf files give the built-in models' pixels
 }
 
 TEST_CASE("render::Renderer .brdf parameters are uniforms: float, bool, color, tangent frame") {
-    const std::string text = "analytic\n::begin parameters\nfloat k 0 10 2\nbool twice 0\ncolor tint 1 0.5 0.25\n"
-                             "::end parameters\n::begin shader\n"
-                             "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
-                             "    return tint * k * (twice ? 2.0 : 1.0) * (1.0 + X.y + 2.0 * Y.x * Y.x);\n}\n"
-                             "::end shader\n";
+    const std::string text =
+        "analytic\n::begin parameters\nfloat k 0 10 2\nbool twice 0\ncolor tint 1 0.5 0.25\n"
+        "::end parameters\n::begin shader\n"
+        "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
+        "    return tint * k * (twice ? 2.0 : 1.0) * (1.0 + X.y + 2.0 * Y.x * Y.x);\n}\n"
+        "::end shader\n";
     render::Scene s;
     s.light.incidenceDeg = 0;  // E cos(theta_i) = 1: pixels are f itself
     auto value = [&](const std::string& assignments, double tangentDeg) {
@@ -137,7 +139,9 @@ TEST_CASE("render::Renderer compiles BRDF Explorer's GLSL style") {
     CHECK(buildError(text) == "");
     // Negative and NaN results become 0, as BRDF Explorer clamps.
     render::Scene s;
-    s.brdfFile = fromText(kHead + "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(-1.0, sqrt(-n), 2.0); }\n::end shader\n");
+    s.brdfFile = fromText(
+        kHead +
+        "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(-1.0, sqrt(-n), 2.0); }\n::end shader\n");
     const ImageF img = test::glEnv().renderer->render(s, camera(s, 30, 4, 4), render::Output::Color);
     CHECK(img.pixel(2, 2)[0] == 0.f);
     CHECK(img.pixel(2, 2)[1] == 0.f);
@@ -146,25 +150,28 @@ TEST_CASE("render::Renderer compiles BRDF Explorer's GLSL style") {
 
 TEST_CASE("render::Renderer GLSL errors in a .brdf name its own lines") {
     SUBCASE("an undeclared name on line 8") {
-        const std::string e = buildError(kHead + "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
-                                                 "    float a = dot(N, L);\n    return vec3(a * undeclaredThing);\n}\n"
-                                                 "::end shader\n");
+        const std::string e = buildError(kHead +
+                                         "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
+                                         "    float a = dot(N, L);\n    return vec3(a * undeclaredThing);\n}\n"
+                                         "::end shader\n");
         INFO(e);
         CHECK(e.rfind("t.brdf:8:", 0) == 0);
         CHECK(e.find("undeclaredThing") != std::string::npos);
         CHECK(e.find('\n') == std::string::npos);
     }
     SUBCASE("a syntax error, with more errors after it") {
-        const std::string e = buildError(kHead + "float f(float x) { return x }\n"
-                                                 "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(f(n)); }\n"
-                                                 "::end shader\n");
+        const std::string e = buildError(kHead +
+                                         "float f(float x) { return x }\n"
+                                         "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(f(n)); }\n"
+                                         "::end shader\n");
         INFO(e);
         CHECK(e.rfind("t.brdf:6:", 0) == 0);
     }
     SUBCASE("a parameter named like a GLSL keyword: the declaration's line") {
-        const std::string e = buildError("analytic\n::begin parameters\nfloat n 0 1 0\nfloat sample 0 1 0\n::end parameters\n"
-                                         "::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(n); }\n"
-                                         "::end shader\n");
+        const std::string e = buildError(
+            "analytic\n::begin parameters\nfloat n 0 1 0\nfloat sample 0 1 0\n::end parameters\n"
+            "::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(n); }\n"
+            "::end shader\n");
         INFO(e);
         CHECK(e.rfind("t.brdf:4:", 0) == 0);
     }
@@ -174,15 +181,17 @@ TEST_CASE("render::Renderer GLSL errors in a .brdf name its own lines") {
         CHECK(e.rfind("t.brdf:5: BRDF cannot be called as vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)", 0) == 0);
     }
     SUBCASE("a name hilite's shader defines") {
-        const std::string e = buildError(kHead + "float luminance(vec3 c) { return c.x; }\n"
-                                                 "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(n); }\n"
-                                                 "::end shader\n");
+        const std::string e = buildError(kHead +
+                                         "float luminance(vec3 c) { return c.x; }\n"
+                                         "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(n); }\n"
+                                         "::end shader\n");
         INFO(e);
         CHECK(e.rfind("t.brdf:6:", 0) == 0);
         CHECK(e.find("'luminance' is a name of hilite's shader") != std::string::npos);
-        const std::string u = buildError("analytic\n::begin parameters\nfloat uWi 0 1 0\n::end parameters\n::begin shader\n"
-                                         "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(uWi); }\n"
-                                         "::end shader\n");
+        const std::string u = buildError(
+            "analytic\n::begin parameters\nfloat uWi 0 1 0\n::end parameters\n::begin shader\n"
+            "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return vec3(uWi); }\n"
+            "::end shader\n");
         INFO(u);
         CHECK(u.rfind("t.brdf:3:", 0) == 0);
     }
@@ -195,8 +204,9 @@ TEST_CASE("render::Renderer a .brdf that discards leaves 0, not the previous fra
     bright.brdf.model = brdf::Model::GGX;
     bright.brdf.roughness = 1.0;
     render::Scene s;
-    s.brdfFile = fromText(kHead + "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
-                                  "    if (V.y > 0.0) discard;\n    return vec3(1.0);\n}\n::end shader\n");
+    s.brdfFile = fromText(kHead +
+                          "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n"
+                          "    if (V.y > 0.0) discard;\n    return vec3(1.0);\n}\n::end shader\n");
     const PinholeCamera cam = camera(bright, 60, 48, 32);
     ImageF img;
     env.renderer->render(bright, cam, render::Output::Color, img);

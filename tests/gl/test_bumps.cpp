@@ -29,8 +29,8 @@ render::Scene bumpScene(double incidence, double periodPx) {
 }
 
 struct TwinComparison {
-    int compared = 0;     ///< pixels above 1e-2 of the twin's peak (red)
-    double maxErr = 0;    ///< largest relative GL-vs-twin difference over them
+    int compared = 0;   ///< pixels above 1e-2 of the twin's peak (red)
+    double maxErr = 0;  ///< largest relative GL-vs-twin difference over them
 };
 
 /// Renders `s` through `cam` in GL and compares the first `channels` colour channels of every pixel above

@@ -1,8 +1,8 @@
 #include "gl/context.hpp"
 
 #include "brdf/spectral.hpp"
-#include "hilite/core/error.hpp"
 #include "gl_fixture.hpp"
+#include "hilite/core/error.hpp"
 
 #include "render/renderer.hpp"
 #include "render/shader_source.hpp"
@@ -67,7 +67,8 @@ std::vector<float> renderOn(gl::Backend b, int device) {
 TEST_CASE("gl::Context egl-device renders the same bytes as OSMesa on llvmpipe") {
     std::string why;
     const std::vector<gl::EglDevice> devices = gl::eglDevices(why);
-    const auto software = std::find_if(devices.begin(), devices.end(), [](const gl::EglDevice& d) { return d.software; });
+    const auto software =
+        std::find_if(devices.begin(), devices.end(), [](const gl::EglDevice& d) { return d.software; });
     const bool osmesa = std::count(test::backends().begin(), test::backends().end(), gl::Backend::OSMesa) > 0;
     if (devices.empty()) {
         MESSAGE("skipped: no EGL device to compare (" << why << ")");
@@ -107,10 +108,12 @@ TEST_CASE("gl::translateLog names each piece's file and line in Mesa's K:N(C) lo
     using hilite::gl::SourcePiece;
     const std::vector<SourcePiece> pieces = {{"<generated>", 1, "#version 450\n"}, {"shaders/brdf.glsl", 40, "x\n"}};
     const long n = 1L * hilite::gl::kLineStride + 43;  // piece 1, its line 43
-    const std::string log = "1:" + std::to_string(n) + "(7): error: 'foo' undeclared\n"
+    const std::string log = "1:" + std::to_string(n) +
+                            "(7): error: 'foo' undeclared\n"
                             "0:3(12): warning: unused\n"
                             "no location here: 5:x(1) and 12:(3)\n"
-                            "at 0:" + std::to_string(n) + "(2): error: redefined\n";
+                            "at 0:" +
+                            std::to_string(n) + "(2): error: redefined\n";
     CHECK(hilite::gl::translateLog(log, pieces) ==
           "shaders/brdf.glsl:43:7: error: 'foo' undeclared\n"
           "<generated>:3:12: warning: unused\n"

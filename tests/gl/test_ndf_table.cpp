@@ -24,7 +24,8 @@ TEST_CASE("measurement::measureGl a table sampled from GGX measures like GGX") {
         tab.brdf.ndfTable = brdf::parseNdfTable(test::ggxTableText(alpha), "ggx.csv");
         for (double inc : {0.0, 30.0, 60.0, 75.0}) {
             ggx.light.incidenceDeg = tab.light.incidenceDeg = inc;
-            const auto a = measurement::measureGl(renderer, ggx, setup), b = measurement::measureGl(renderer, tab, setup);
+            const auto a = measurement::measureGl(renderer, ggx, setup),
+                       b = measurement::measureGl(renderer, tab, setup);
             CAPTURE(alpha);
             CAPTURE(inc);
             CHECK(std::abs(a.shape.aspect - b.shape.aspect) < 0.005);

@@ -1,7 +1,7 @@
 #include "render/renderer.hpp"
 
-#include "hilite/core/error.hpp"
 #include "gl_fixture.hpp"
+#include "hilite/core/error.hpp"
 #include "render/shader_source.hpp"
 
 #include <doctest/doctest.h>
@@ -108,7 +108,7 @@ TEST_CASE("render::Renderer at normal incidence the image is mirror-symmetric ab
                 maxRel = std::max(maxRel, std::abs(a - b) / std::max(1e-30, std::max(a, b)));
             }
         const std::string modelName = brdf::toString(m);
-                    CAPTURE(modelName);
+        CAPTURE(modelName);
         CHECK(maxRel < 1e-6);
     }
 }
@@ -173,7 +173,8 @@ TEST_CASE("render::Renderer point light: every pixel matches the double twin") {
         s.eyeDistance = 4.0;
         CAPTURE(inc);
         const auto measureView = test::compareWithTwin(
-            *env.renderer, s, PinholeCamera::measurementFrom(s.light.chart(), render::eyePosition(s), s.light.chart().wr(), 60, 96, 64));
+            *env.renderer, s,
+            PinholeCamera::measurementFrom(s.light.chart(), render::eyePosition(s), s.light.chart().wr(), 60, 96, 64));
         CHECK(measureView.allFinite);
         CHECK(measureView.allNonNegative);
         CHECK(measureView.compared >= 50);
@@ -226,7 +227,8 @@ TEST_CASE("render::Renderer every pixel is written: no earlier frame shows throu
             for (int y = 0; y < over.height; ++y)
                 for (int x = 0; x < over.width; ++x)
                     for (int c = 0; c < 4; ++c)
-                        differ += over.pixel(x, y)[c] != alone.pixel(cropped ? x + crop.x : x, cropped ? y + crop.y : y)[c];
+                        differ +=
+                            over.pixel(x, y)[c] != alone.pixel(cropped ? x + crop.x : x, cropped ? y + crop.y : y)[c];
             CAPTURE(cropped);
             CHECK(differ == 0);
         }

@@ -1,8 +1,8 @@
 // Retroreflection: a lobe about the light direction, 2 theta_i from the mirror direction. The
 // automatic framing finds its peak and measures the highlight about it; ordinary lobes stay about the mirror.
 
-#include "hilite/measurement/measure_scene.hpp"
 #include "brdf/ndf_table.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 #include "measurement/peak_frame.hpp"
 
 #include "gl/gl_fixture.hpp"
@@ -56,7 +56,7 @@ TEST_CASE("measurement::findPeak and frameAboutPeak") {
         render::Scene g = makeScene(brdf::Model::GGX, 0.3, 70);
         g.brdf.geometry = brdf::Geometry::Smith;
         const auto p = measurement::findPeak(g);
-        CHECK(p.offsetDeg > 1.0);  // the off-specular peak ...
+        CHECK(p.offsetDeg > 1.0);                          // the off-specular peak ...
         CHECK_FALSE(measurement::frameAboutPeak(g, 0.5));  // ... with the mirror direction still in the region
         double offset = 1;
         CHECK(measurement::framedAbout(g, 0.5, offset) == "mirror direction");
@@ -65,7 +65,8 @@ TEST_CASE("measurement::findPeak and frameAboutPeak") {
         // The shipped hand-painted NDF at 80 deg with Smith G and Schlick F: the peak moves 10 deg toward grazing
         // and the mirror direction drops out of the half-maximum region, yet the peak is near: measured about wr.
         render::Scene h = makeScene(brdf::Model::Tabulated, 0.1, 80);
-        h.brdf.ndfTable = brdf::parseNdfTable("0, 10\n1, 9.5\n2, 8\n3, 5\n4, 3.5\n6, 3\n9, 2\n12, 0.5\n15, 0\n", "h.csv");
+        h.brdf.ndfTable =
+            brdf::parseNdfTable("0, 10\n1, 9.5\n2, 8\n3, 5\n4, 3.5\n6, 3\n9, 2\n12, 0.5\n15, 0\n", "h.csv");
         h.brdf.geometry = brdf::Geometry::Smith;
         h.brdf.fresnel = brdf::Fresnel::Schlick;
         const auto q = measurement::findPeak(h);

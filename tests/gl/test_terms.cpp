@@ -3,10 +3,10 @@
 // program assembled with only the blocks it runs.
 
 #include "brdf/energy.hpp"
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/ndf_tables.hpp"
 #include "brdf/spectral.hpp"
 #include "gl_fixture.hpp"
+#include "hilite/brdf/evaluate.hpp"
 #include "render/shader_source.hpp"
 
 #include <doctest/doctest.h>
@@ -109,7 +109,7 @@ std::vector<TermCase> termCases() {
         {"Fd_Lambert + D_GGX", withDiffuse(base(Model::GGX, Geometry::Smith), Diffuse::Lambert)},
         {"Fd_OrenNayar", withDiffuse(base(Model::None), Diffuse::OrenNayar)},
         {"Fd_OrenNayar + Phong_Normalized", withDiffuse(base(Model::Phong), Diffuse::OrenNayar)},
-        {"Retro_Normalized", base(Model::Retro)},  // its framing: tests/gl/test_retro.cpp
+        {"Retro_Normalized", base(Model::Retro)},        // its framing: tests/gl/test_retro.cpp
         {"D_Tabulated", tabulated(Geometry::Implicit)},  // A GGX table (tests/gl/test_ndf_table.cpp)
         {"D_Tabulated + Lambda_Tabulated + F_Schlick",
          withFresnel(tabulated(Geometry::Smith), Fresnel::Schlick, dvec3(1.5))},
@@ -204,12 +204,12 @@ TEST_CASE("render::assemble a program holds exactly the terms it runs") {
         return text;
     };
     const std::vector<std::string> terms = {
-        "Phong_Normalized(",     "Phong_Classic(",      "D_BlinnPhong(",      "D_Beckmann(",      "D_GGX(",
-        "D_Gaussian(",           "D_BeckmannAniso(",    "D_GGXAniso(",        "F_Schlick(",       "F_Dielectric(",
-        "F_Conductor(",          "F_Spectral(",         "Lambda_GGX(",        "Lambda_Beckmann(", "Lambda_GGXAniso(",
-        "Lambda_BeckmannAniso(", "G2_SmithCorrelated(", "G2_SmithSeparable(", "G_CookTorrance(",  "Fd_Lambert(",
-        "Fd_OrenNayar(",         "Retro_Normalized(",   "D_Tabulated(",       "Lambda_Tabulated(",
-        "F_SpectralTable(",      "MS_KullaConty(",      "Fd_Coupled("};
+        "Phong_Normalized(",     "Phong_Classic(",      "D_BlinnPhong(",      "D_Beckmann(",       "D_GGX(",
+        "D_Gaussian(",           "D_BeckmannAniso(",    "D_GGXAniso(",        "F_Schlick(",        "F_Dielectric(",
+        "F_Conductor(",          "F_Spectral(",         "Lambda_GGX(",        "Lambda_Beckmann(",  "Lambda_GGXAniso(",
+        "Lambda_BeckmannAniso(", "G2_SmithCorrelated(", "G2_SmithSeparable(", "G_CookTorrance(",   "Fd_Lambert(",
+        "Fd_OrenNayar(",         "Retro_Normalized(",   "D_Tabulated(",       "Lambda_Tabulated(", "F_SpectralTable(",
+        "MS_KullaConty(",        "Fd_Coupled("};
     for (const TermCase& t : termCases()) {
         const std::string text = fragment(t.p);
         const auto blocks = render::termBlocks(t.p);

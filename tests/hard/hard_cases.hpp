@@ -9,8 +9,8 @@
 //   - term rows (term_cases.cpp): one GLSL term at given arguments against its C++ twin.
 // build/bin/hilite_hard_report prints the measured outcome of every row as docs/hard_cases.md's tables.
 
-#include "hilite/measurement/measure_scene.hpp"
 #include "hilite/analysis/highlight.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 #include "render/renderer.hpp"
 
 #include <functional>
@@ -31,20 +31,20 @@ enum class View {
 
 struct Camera {
     View view = View::Lobe;
-    double fovDeg = 30;         ///< Fixed, Photo
-    double elevationDeg = 10;   ///< Photo
-    int size = 128;             ///< square image
+    double fovDeg = 30;        ///< Fixed, Photo
+    double elevationDeg = 10;  ///< Photo
+    int size = 128;            ///< square image
 };
 
 struct SceneCase {
     std::string name;
     render::Scene scene;
     Camera camera;
-    measurement::MeasureSetup setup;     ///< the measurement (default: automatic framing, 256^2)
+    measurement::MeasureSetup setup;       ///< the measurement (default: automatic framing, 256^2)
     std::vector<analysis::Flag> glFlags;   ///< exactly the flags the GL measurement must report
     std::vector<analysis::Flag> refFlags;  ///< exactly the flags the double reference must report
-    double tolerance = 0;  ///< GL vs twin, relative, per pixel; 0: pixelTolerance() of the lobe
-    double aspectTolerance = 0;  ///< GL vs reference in aspect; 0: the suite's (0.005)
+    double tolerance = 0;                  ///< GL vs twin, relative, per pixel; 0: pixelTolerance() of the lobe
+    double aspectTolerance = 0;            ///< GL vs reference in aspect; 0: the suite's (0.005)
 };
 
 const std::vector<SceneCase>& sceneCases();
@@ -59,13 +59,13 @@ double pixelTolerance(double minorHalfWidth);
 
 /// Every pixel of both outputs (colour, measurement) of one path, and its agreement with the other.
 struct PixelCheck {
-    long values = 0;             ///< floats checked (4 per pixel and output)
-    long nonFinite = 0;          ///< NaN or Inf among them
-    long negative = 0;           ///< negative radiance, L or pixel weight
-    long compared = 0;           ///< pixels above 1e-3 of the peak, compared with the other path
-    double maxRelError = 0;      ///< colour and L, relative, over the compared pixels
-    double maxUvError = 0;       ///< chart coordinates, absolute (rad), over the visible pixels
-    double maxWeightError = 0;   ///< pixel (u, v) area, relative, over the visible pixels
+    long values = 0;            ///< floats checked (4 per pixel and output)
+    long nonFinite = 0;         ///< NaN or Inf among them
+    long negative = 0;          ///< negative radiance, L or pixel weight
+    long compared = 0;          ///< pixels above 1e-3 of the peak, compared with the other path
+    double maxRelError = 0;     ///< colour and L, relative, over the compared pixels
+    double maxUvError = 0;      ///< chart coordinates, absolute (rad), over the visible pixels
+    double maxWeightError = 0;  ///< pixel (u, v) area, relative, over the visible pixels
 };
 
 struct SceneOutcome {
@@ -96,7 +96,7 @@ struct TermCase {
     std::string glsl;                 ///< statements setting `vec4 r` from `float a[8]` (uniforms)
     std::vector<double> args;         ///< a[0..]
     std::function<glm::dvec4(const std::vector<double>& a)> twin;  ///< the C++ twin, same components
-    int components = 1;                  ///< how many of r's components are checked
+    int components = 1;                                            ///< how many of r's components are checked
     std::optional<glm::dvec4> expected;  ///< the exact answer where known (checked on the double path)
     double tolerance = 1e-5;             ///< GL vs twin at the float-rounded arguments, relative (absolute below 1e-30)
 };

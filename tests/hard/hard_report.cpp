@@ -5,8 +5,8 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "measurement/diagnose.hpp"
 #include "gl/context.hpp"
+#include "measurement/diagnose.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,8 +30,8 @@ std::string num(double v, int digits = 3) {
 /// "aspect A, major M deg [, flags]" or the diagnosis alone.
 std::string answer(const analysis::Shape& s) {
     using analysis::Flag;
-    const bool shapeless = s.has(Flag::NoHighlight) || s.has(Flag::Mirror) ||
-                           (s.has(Flag::UnderResolved) && s.major_deg == 0);
+    const bool shapeless =
+        s.has(Flag::NoHighlight) || s.has(Flag::Mirror) || (s.has(Flag::UnderResolved) && s.major_deg == 0);
     std::string a = shapeless ? "" : "aspect " + num(s.aspect, 4) + ", major " + num(s.major_deg) + "°";
     if (!s.flags.empty()) a += (a.empty() ? "" : "; ") + std::string("**") + flagList(s.flags) + "**";
     return a;

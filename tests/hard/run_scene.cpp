@@ -62,9 +62,7 @@ void countValue(PixelCheck& k, double v, bool mustBeNonNegative) {
 
 double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
 
-double widthOf(const SceneCase& c) {
-    return measurement::twinLobeWidths(c.scene, c.setup.options.threshold).minor;
-}
+double widthOf(const SceneCase& c) { return measurement::twinLobeWidths(c.scene, c.setup.options.threshold).minor; }
 
 }  // namespace
 

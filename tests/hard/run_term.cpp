@@ -4,10 +4,10 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "hilite/core/error.hpp"
 #include "gl/check.hpp"
 #include "gl/framebuffer.hpp"
 #include "gl/program.hpp"
+#include "hilite/core/error.hpp"
 #include "render/shader_source.hpp"
 
 #include <glad/gl.h>
@@ -47,7 +47,8 @@ std::vector<gl::SourcePiece> fragmentOf(const TermCase& c) {
 /// One full-screen triangle from gl_VertexID: no vertex buffer.
 const char* kVertex =
     "#version 450 core\n"
-    "void main() { gl_Position = vec4(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1), 0.0, 1.0); }\n";
+    "void main() { gl_Position = vec4(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1), 0.0, 1.0); "
+    "}\n";
 
 glm::dvec4 twinAt(const TermCase& c, const std::vector<double>& args) {
     const glm::dvec4 v = c.twin(args);

@@ -26,7 +26,9 @@ struct Row {
     Row& ref(std::vector<F> f) { return c.refFlags = std::move(f), *this; }
     Row& both(const std::vector<F>& f) { return gl(f).ref(f); }
     Row& aspectTolerance(double t) { return c.aspectTolerance = t, *this; }
-    Row& photo(double elevationDeg, double fovDeg = 40) { return c.camera = {View::Photo, fovDeg, elevationDeg}, *this; }
+    Row& photo(double elevationDeg, double fovDeg = 40) {
+        return c.camera = {View::Photo, fovDeg, elevationDeg}, *this;
+    }
     /// Fixed framing for the measurement and the pixel checks alike.
     Row& fixed(double fovDeg, int size) {
         c.setup.fovDeg = fovDeg;
@@ -51,8 +53,7 @@ std::vector<SceneCase> build() {
         Row("theta_i 0: GGX alpha 0.1", Model::GGX, 0.1, 0.0).both(none),
         Row("theta_i 1e-6 deg: GGX alpha 0.1", Model::GGX, 0.1, 1e-6).both(none),
         Row("theta_i 89.9 deg: GGX alpha 0.1", Model::GGX, 0.1, 89.9).gl({F::Clipped}).ref(cut),
-        Row("theta_i 90 deg: the light on the horizon delivers nothing", Model::GGX, 0.1, 90.0)
-            .both({F::NoHighlight}),
+        Row("theta_i 90 deg: the light on the horizon delivers nothing", Model::GGX, 0.1, 90.0).both({F::NoHighlight}),
         Row("mirror direction 1.7e-7 rad above the horizon: theta_i 89.99999 deg", Model::GGX, 0.1, 89.99999)
             .gl({F::Clipped, F::EffectivelyMirror})
             .ref(cut),
@@ -126,12 +127,14 @@ std::vector<SceneCase> build() {
         Row("conductor eta 1 k 0: no interface", Model::GGX, 0.1, 45.0)
             .fresnel(Fresnel::Conductor, 1.0, 0.0)
             .both({F::NoHighlight}),
-        Row("conductor k 0 eta 1.5 (a dielectric)", Model::GGX, 0.1, 45.0).fresnel(Fresnel::Conductor, 1.5, 0.0).both(none),
+        Row("conductor k 0 eta 1.5 (a dielectric)", Model::GGX, 0.1, 45.0)
+            .fresnel(Fresnel::Conductor, 1.5, 0.0)
+            .both(none),
         Row("dielectric eta 0.7 at 60 deg: total internal reflection", Model::GGX, 0.1, 60.0)
             .fresnel(Fresnel::Dielectric, 0.7)
             .both(none),
-        Row("Schlick F0 0 at normal incidence: F = 0 at the mirror direction, a ring at the horizon", Model::GGX,
-            0.1, 0.0)
+        Row("Schlick F0 0 at normal incidence: F = 0 at the mirror direction, a ring at the horizon", Model::GGX, 0.1,
+            0.0)
             .fresnel(Fresnel::Schlick, 1.5, 0, 0.0)
             .gl({F::Clipped})
             .ref(cut),

@@ -30,51 +30,56 @@ TermCase scalar(std::string name, std::string block, std::string call, Args args
 }
 
 TermCase phong(std::string name, double oneMinusCos, double n, std::optional<double> expected) {
-    return scalar(std::move(name), "Phong_Normalized", "Phong_Normalized(a[0], a[1])", {oneMinusCos, n},
-                  [](const Args& a) { return brdf::Phong_Normalized(a[0], a[1]); }, expected);
+    return scalar(
+        std::move(name), "Phong_Normalized", "Phong_Normalized(a[0], a[1])", {oneMinusCos, n},
+        [](const Args& a) { return brdf::Phong_Normalized(a[0], a[1]); }, expected);
 }
 
 TermCase ggx(std::string name, double NoH, double sin2h, double alpha, std::optional<double> expected) {
-    return scalar(std::move(name), "D_GGX", "D_GGX(a[0], a[1], a[2])", {NoH, sin2h, alpha},
-                  [](const Args& a) { return brdf::D_GGX(a[0], a[1], a[2]); }, expected);
+    return scalar(
+        std::move(name), "D_GGX", "D_GGX(a[0], a[1], a[2])", {NoH, sin2h, alpha},
+        [](const Args& a) { return brdf::D_GGX(a[0], a[1], a[2]); }, expected);
 }
 
 TermCase beckmann(std::string name, double NoH, double sin2h, double m, std::optional<double> expected) {
-    return scalar(std::move(name), "D_Beckmann", "D_Beckmann(a[0], a[1], a[2])", {NoH, sin2h, m},
-                  [](const Args& a) { return brdf::D_Beckmann(a[0], a[1], a[2]); }, expected);
+    return scalar(
+        std::move(name), "D_Beckmann", "D_Beckmann(a[0], a[1], a[2])", {NoH, sin2h, m},
+        [](const Args& a) { return brdf::D_Beckmann(a[0], a[1], a[2]); }, expected);
 }
 
 TermCase aniso(std::string name, const std::string& term, Args args, std::optional<double> expected) {
     const bool isGgx = term == "D_GGXAniso";
-    return scalar(std::move(name), term, term + "(a[0], a[1], a[2], a[3], a[4])", std::move(args),
-                  [isGgx](const Args& a) {
-                      return isGgx ? brdf::D_GGXAniso(a[0], a[1], a[2], a[3], a[4])
-                                   : brdf::D_BeckmannAniso(a[0], a[1], a[2], a[3], a[4]);
-                  },
-                  expected);
+    return scalar(
+        std::move(name), term, term + "(a[0], a[1], a[2], a[3], a[4])", std::move(args),
+        [isGgx](const Args& a) {
+            return isGgx ? brdf::D_GGXAniso(a[0], a[1], a[2], a[3], a[4])
+                         : brdf::D_BeckmannAniso(a[0], a[1], a[2], a[3], a[4]);
+        },
+        expected);
 }
 
 /// G2 of two Lambdas of the same model: cos_i, cos_o, roughness.
 TermCase smith(std::string name, const std::string& g2, const std::string& lambda, Args args,
                std::optional<double> expected) {
-    TermCase c = scalar(std::move(name), g2, g2 + "(" + lambda + "(a[0], a[2]), " + lambda + "(a[1], a[2]))",
-                        std::move(args),
-                        [g2, lambda](const Args& a) {
-                            auto L = [&](double cosTheta) {
-                                return lambda == "Lambda_GGX" ? brdf::Lambda_GGX(cosTheta, a[2])
-                                                              : brdf::Lambda_Beckmann(cosTheta, a[2]);
-                            };
-                            return g2 == "G2_SmithCorrelated" ? brdf::G2_SmithCorrelated(L(a[0]), L(a[1]))
-                                                              : brdf::G2_SmithSeparable(L(a[0]), L(a[1]));
-                        },
-                        expected);
+    TermCase c = scalar(
+        std::move(name), g2, g2 + "(" + lambda + "(a[0], a[2]), " + lambda + "(a[1], a[2]))", std::move(args),
+        [g2, lambda](const Args& a) {
+            auto L = [&](double cosTheta) {
+                return lambda == "Lambda_GGX" ? brdf::Lambda_GGX(cosTheta, a[2])
+                                              : brdf::Lambda_Beckmann(cosTheta, a[2]);
+            };
+            return g2 == "G2_SmithCorrelated" ? brdf::G2_SmithCorrelated(L(a[0]), L(a[1]))
+                                              : brdf::G2_SmithSeparable(L(a[0]), L(a[1]));
+        },
+        expected);
     c.blocks.push_back(lambda);
     return c;
 }
 
 TermCase schlick(std::string name, double f0, double cosTheta, double expected) {
-    return scalar(std::move(name), "F_Schlick", "F_Schlick(vec3(a[0]), a[1]).x", {f0, cosTheta},
-                  [](const Args& a) { return brdf::F_Schlick(dvec3(a[0]), a[1]).x; }, expected);
+    return scalar(
+        std::move(name), "F_Schlick", "F_Schlick(vec3(a[0]), a[1]).x", {f0, cosTheta},
+        [](const Args& a) { return brdf::F_Schlick(dvec3(a[0]), a[1]).x; }, expected);
 }
 
 /// (Rs, Rp, F) of the exact dielectric (k < 0) or conductor Fresnel.
@@ -100,8 +105,9 @@ TermCase half(std::string name, dvec3 wi, dvec3 wo, dvec4 expected) {
     TermCase c;
     c.name = std::move(name);
     c.blocks = {"HalfVector"};
-    c.glsl = "HalfVector hv = halfVector(vec3(a[0], a[1], a[2]), vec3(a[3], a[4], a[5]));\n"
-             "    r = vec4(hv.valid ? 1.0 : 0.0, hv.NoH, hv.sin2h, hv.VoH);";
+    c.glsl =
+        "HalfVector hv = halfVector(vec3(a[0], a[1], a[2]), vec3(a[3], a[4], a[5]));\n"
+        "    r = vec4(hv.valid ? 1.0 : 0.0, hv.NoH, hv.sin2h, hv.VoH);";
     c.args = {wi.x, wi.y, wi.z, wo.x, wo.y, wo.z};
     c.twin = [](const Args& a) {
         const brdf::HalfVector hv = brdf::halfVector({a[0], a[1], a[2]}, {a[3], a[4], a[5]});
@@ -121,14 +127,17 @@ std::vector<TermCase> build() {
         phong("Phong_Normalized n 0 at 1-cos 0.5", 0.5, 0.0, 1.0 / pi),
         phong("Phong_Normalized n 0 past 90 deg from the mirror (cos^0 = 1)", 1.5, 0.0, 1.0 / pi),
         phong("Phong_Normalized n 1 at the mirror direction", 0.0, 1.0, 1.5 / pi),
-        phong("Phong_Normalized n 1e4 at 1-cos 1e-5", 1e-5, 1e4, 10002.0 / (2 * pi) * std::exp(1e4 * std::log1p(-1e-5))),
+        phong("Phong_Normalized n 1e4 at 1-cos 1e-5", 1e-5, 1e4,
+              10002.0 / (2 * pi) * std::exp(1e4 * std::log1p(-1e-5))),
         phong("Phong_Normalized n 1e6 at 1-cos 1e-7", 1e-7, 1e6, std::nullopt),
         phong("Phong_Normalized n 1e8 at 1-cos 1e-9 (cos is 1 in float)", 1e-9, 1e8, std::nullopt),
         phong("Phong_Normalized n 1e8 at 1-cos 0.5 (exp underflows)", 0.5, 1e8, 0.0),
-        scalar("D_BlinnPhong n 1e8 at h = n", "D_BlinnPhong", "D_BlinnPhong(a[0], a[1])", {0.0, 1e8},
-               [](const Args& a) { return brdf::D_BlinnPhong(a[0], a[1]); }, (1e8 + 2) / (2 * pi)),
-        scalar("D_BlinnPhong n 1e8 with h on the horizon", "D_BlinnPhong", "D_BlinnPhong(a[0], a[1])", {1.0, 1e8},
-               [](const Args& a) { return brdf::D_BlinnPhong(a[0], a[1]); }, 0.0),
+        scalar(
+            "D_BlinnPhong n 1e8 at h = n", "D_BlinnPhong", "D_BlinnPhong(a[0], a[1])", {0.0, 1e8},
+            [](const Args& a) { return brdf::D_BlinnPhong(a[0], a[1]); }, (1e8 + 2) / (2 * pi)),
+        scalar(
+            "D_BlinnPhong n 1e8 with h on the horizon", "D_BlinnPhong", "D_BlinnPhong(a[0], a[1])", {1.0, 1e8},
+            [](const Args& a) { return brdf::D_BlinnPhong(a[0], a[1]); }, 0.0),
         // NDFs at roughness 0 (a delta), 1e-7, 10, and h at the horizon.
         ggx("D_GGX alpha 0 at h = n (0/0 unguarded)", 1.0, 0.0, 0.0, 0.0),
         ggx("D_GGX alpha 0 off the peak", 0.8, 0.36, 0.0, 0.0),
@@ -138,16 +147,18 @@ std::vector<TermCase> build() {
         ggx("D_GGX alpha 10 with h 1e-7 above the horizon", 1e-7, 1.0, 10.0, std::nullopt),
         beckmann("D_Beckmann m 0 at h = n (0/0 unguarded)", 1.0, 0.0, 0.0, 0.0),
         beckmann("D_Beckmann m 1e-7 at h = n", 1.0, 0.0, 1e-7, 1.0 / (pi * 1e-14)),
-        beckmann("D_Beckmann m 10 with h 1e-10 above the horizon (NoH^4 underflows: 0/0 unguarded)", 1e-10, 1.0,
-                 10.0, 0.0),
+        beckmann("D_Beckmann m 10 with h 1e-10 above the horizon (NoH^4 underflows: 0/0 unguarded)", 1e-10, 1.0, 10.0,
+                 0.0),
         beckmann("D_Beckmann m 1e-4 at theta_h 1e-3 (exp(-100) is subnormal in float)", std::cos(1e-3),
                  std::pow(std::sin(1e-3), 2), 1e-4, std::nullopt),
-        scalar("D_Gaussian m 0 at h = n (0/0 unguarded)", "D_Gaussian", "D_Gaussian(a[0], a[1], a[2], a[3])",
-               {1.0, 0.0, 0.0, brdf::gaussianNormalization(0.0)},
-               [](const Args& a) { return brdf::D_Gaussian(a[0], a[1], a[2], a[3]); }, 0.0),
-        scalar("D_Gaussian m 1e-7 at h = n", "D_Gaussian", "D_Gaussian(a[0], a[1], a[2], a[3])",
-               {1.0, 0.0, 1e-7, brdf::gaussianNormalization(1e-7)},
-               [](const Args& a) { return brdf::D_Gaussian(a[0], a[1], a[2], a[3]); }, std::nullopt),
+        scalar(
+            "D_Gaussian m 0 at h = n (0/0 unguarded)", "D_Gaussian", "D_Gaussian(a[0], a[1], a[2], a[3])",
+            {1.0, 0.0, 0.0, brdf::gaussianNormalization(0.0)},
+            [](const Args& a) { return brdf::D_Gaussian(a[0], a[1], a[2], a[3]); }, 0.0),
+        scalar(
+            "D_Gaussian m 1e-7 at h = n", "D_Gaussian", "D_Gaussian(a[0], a[1], a[2], a[3])",
+            {1.0, 0.0, 1e-7, brdf::gaussianNormalization(1e-7)},
+            [](const Args& a) { return brdf::D_Gaussian(a[0], a[1], a[2], a[3]); }, std::nullopt),
         aniso("D_GGXAniso alpha_x 0 (smooth along x: HoX / 0 unguarded)", "D_GGXAniso", {0, 0, 1, 0, 0.1}, 0.0),
         aniso("D_GGXAniso alpha_x / alpha_y 1e-4 at h = n", "D_GGXAniso", {0, 0, 1, 1e-5, 0.1}, 1 / (pi * 1e-6)),
         aniso("D_GGXAniso alpha_x / alpha_y 1e-4 at h 1e-5 off n along x", "D_GGXAniso",
@@ -156,22 +167,29 @@ std::vector<TermCase> build() {
         aniso("D_BeckmannAniso alpha_x / alpha_y 1e-4 at h = n", "D_BeckmannAniso", {0, 0, 1, 1e-4, 1},
               1 / (pi * 1e-4)),
         // Masking-shadowing at the horizon (Lambda = inf, G = 0) and for a smooth surface.
-        smith("G2_SmithCorrelated GGX with wo on the horizon", "G2_SmithCorrelated", "Lambda_GGX", {0.7, 0.0, 0.3}, 0.0),
+        smith("G2_SmithCorrelated GGX with wo on the horizon", "G2_SmithCorrelated", "Lambda_GGX", {0.7, 0.0, 0.3},
+              0.0),
         smith("G2_SmithCorrelated GGX with wo 1e-7 above the horizon", "G2_SmithCorrelated", "Lambda_GGX",
               {0.7, 1e-7, 0.3}, std::nullopt),
         smith("G2_SmithCorrelated GGX alpha 0 on the horizon (0 * inf unguarded)", "G2_SmithCorrelated", "Lambda_GGX",
               {0.7, 0.0, 0.0}, 1.0),
         smith("G2_SmithSeparable Beckmann with wo on the horizon", "G2_SmithSeparable", "Lambda_Beckmann",
               {0.7, 0.0, 0.3}, 0.0),
-        smith("G2_SmithCorrelated Beckmann m 0 on the horizon (0/0 unguarded)", "G2_SmithCorrelated",
-              "Lambda_Beckmann", {0.7, 0.0, 0.0}, 1.0),
-        scalar("Lambda_GGXAniso of a smooth surface 1e-25 above the horizon (z^2 underflows: 0/0 unguarded)",
-               "Lambda_GGXAniso", "Lambda_GGXAniso(vec3(a[0], a[1], a[2]), a[3], a[4])", {1.0, 0.0, 1e-25, 0.0, 0.0},
-               [](const Args& a) { return brdf::Lambda_GGXAniso({a[0], a[1], a[2]}, a[3], a[4]); }, 0.0),
-        scalar("G_CookTorrance with wi = -wo (VoH = 0)", "G_CookTorrance", "G_CookTorrance(a[0], a[1], a[2], a[3])",
-               {0.0, 0.5, 0.5, 0.0}, [](const Args& a) { return brdf::G_CookTorrance(a[0], a[1], a[2], a[3]); }, 0.0),
-        scalar("G_CookTorrance with wo on the horizon", "G_CookTorrance", "G_CookTorrance(a[0], a[1], a[2], a[3])",
-               {1.0, 0.0, 0.5, 0.7}, [](const Args& a) { return brdf::G_CookTorrance(a[0], a[1], a[2], a[3]); }, 0.0),
+        smith("G2_SmithCorrelated Beckmann m 0 on the horizon (0/0 unguarded)", "G2_SmithCorrelated", "Lambda_Beckmann",
+              {0.7, 0.0, 0.0}, 1.0),
+        scalar(
+            "Lambda_GGXAniso of a smooth surface 1e-25 above the horizon (z^2 underflows: 0/0 unguarded)",
+            "Lambda_GGXAniso", "Lambda_GGXAniso(vec3(a[0], a[1], a[2]), a[3], a[4])", {1.0, 0.0, 1e-25, 0.0, 0.0},
+            [](const Args& a) {
+                return brdf::Lambda_GGXAniso({a[0], a[1], a[2]}, a[3], a[4]);
+            },
+            0.0),
+        scalar(
+            "G_CookTorrance with wi = -wo (VoH = 0)", "G_CookTorrance", "G_CookTorrance(a[0], a[1], a[2], a[3])",
+            {0.0, 0.5, 0.5, 0.0}, [](const Args& a) { return brdf::G_CookTorrance(a[0], a[1], a[2], a[3]); }, 0.0),
+        scalar(
+            "G_CookTorrance with wo on the horizon", "G_CookTorrance", "G_CookTorrance(a[0], a[1], a[2], a[3])",
+            {1.0, 0.0, 0.5, 0.7}, [](const Args& a) { return brdf::G_CookTorrance(a[0], a[1], a[2], a[3]); }, 0.0),
         // The half vector: none for wi = -wo; exact for a mirror pair at grazing.
         half("halfVector of wi = -wo (none)", {0.6, 0.0, 0.8}, {-0.6, 0.0, -0.8}, dvec4(0.0)),
         half("halfVector of a mirror pair 1e-8 above the horizon (h = n)", {std::sqrt(1 - 1e-16), 0.0, 1e-8},
@@ -210,10 +228,11 @@ std::vector<TermCase> build() {
         exact("F_Conductor silver at cos 1 + 1e-7", 1.0 + 1e-7, 0.14, 4.15, std::nullopt),
         exact("F_Conductor silver at cos -1e-7", -1e-7, 0.14, 4.15, dvec4(1, 1, 1, 0)),
         // A diffuse term whose formula divides by max(cos_i, cos_o).
-        scalar("Fd_OrenNayar with both directions on the horizon (0/0 unguarded)", "Fd_OrenNayar",
-               "Fd_OrenNayar(vec3(1.0), a[0], a[1], a[2], a[3]).x", {0.5, 0.0, 0.0, -1.0},
-               [](const Args& a) { return brdf::Fd_OrenNayar(dvec3(1.0), a[0], a[1], a[2], a[3]).x; },
-               (1.0 - 0.5 * 0.25 / (0.25 + 0.33)) / pi),
+        scalar(
+            "Fd_OrenNayar with both directions on the horizon (0/0 unguarded)", "Fd_OrenNayar",
+            "Fd_OrenNayar(vec3(1.0), a[0], a[1], a[2], a[3]).x", {0.5, 0.0, 0.0, -1.0},
+            [](const Args& a) { return brdf::Fd_OrenNayar(dvec3(1.0), a[0], a[1], a[2], a[3]).x; },
+            (1.0 - 0.5 * 0.25 / (0.25 + 0.33)) / pi),
     };
     return t;
 }

@@ -49,8 +49,8 @@ void sceneGl(size_t i) {
     INFO("scene: " << c.scene);
     const SceneOutcome o = runSceneGl(*test::glEnv().renderer, c);
     INFO("pixels: " << o.pixels.values << " values, " << o.pixels.compared << " compared, max relative error "
-                    << o.pixels.maxRelError << " (tolerance " << o.tolerance << "), uv error "
-                    << o.pixels.maxUvError << " rad, weight error " << o.pixels.maxWeightError);
+                    << o.pixels.maxRelError << " (tolerance " << o.tolerance << "), uv error " << o.pixels.maxUvError
+                    << " rad, weight error " << o.pixels.maxWeightError);
     CHECK(o.pixels.nonFinite == 0);
     CHECK(o.pixels.negative == 0);
     CHECK(o.pixels.maxRelError <= o.tolerance);
@@ -60,9 +60,11 @@ void sceneGl(size_t i) {
     const analysis::Shape ref = measurement::measureReference(c.scene, c.setup.options).shape;
     if (comparable(o.measurement.shape) && comparable(ref)) {
         INFO("reference: " << ref);
-        CHECK(std::abs(o.measurement.shape.aspect - ref.aspect) <= (c.aspectTolerance > 0 ? c.aspectTolerance : kAspectTolerance));
+        CHECK(std::abs(o.measurement.shape.aspect - ref.aspect) <=
+              (c.aspectTolerance > 0 ? c.aspectTolerance : kAspectTolerance));
         const bool cut = o.measurement.shape.has(analysis::Flag::HorizonCut);
-        CHECK(std::abs(o.measurement.shape.major_deg / ref.major_deg - 1.0) <= (cut ? kMajorToleranceCut : kMajorTolerance));
+        CHECK(std::abs(o.measurement.shape.major_deg / ref.major_deg - 1.0) <=
+              (cut ? kMajorToleranceCut : kMajorTolerance));
     }
 }
 
@@ -110,13 +112,21 @@ std::deque<std::string>& names() {
 }
 
 template <size_t I>
-void sceneGlCase() { sceneGl(I); }
+void sceneGlCase() {
+    sceneGl(I);
+}
 template <size_t I>
-void sceneDoubleCase() { sceneDouble(I); }
+void sceneDoubleCase() {
+    sceneDouble(I);
+}
 template <size_t I>
-void termGlCase() { termGl(I); }
+void termGlCase() {
+    termGl(I);
+}
 template <size_t I>
-void termDoubleCase() { termDouble(I); }
+void termDoubleCase() {
+    termDouble(I);
+}
 
 void add(void (*f)(), const std::string& name) {
     names().push_back(name);

@@ -19,8 +19,9 @@ namespace {
 
 /// The hard and the ordinary: narrow lobes, grazing incidence, a horizon cut.
 std::vector<render::Scene> scenes() {
-    return {makeScene(brdf::Model::GGX, 0.1, 60), makeScene(brdf::Model::GGX, 0.02, 80), makeScene(brdf::Model::GGX, 0.02, 85),
-            makeScene(brdf::Model::Phong, 1e4, 60), makeScene(brdf::Model::Beckmann, 0.3, 75)};
+    return {makeScene(brdf::Model::GGX, 0.1, 60), makeScene(brdf::Model::GGX, 0.02, 80),
+            makeScene(brdf::Model::GGX, 0.02, 85), makeScene(brdf::Model::Phong, 1e4, 60),
+            makeScene(brdf::Model::Beckmann, 0.3, 75)};
 }
 
 double aspectError(const measurement::Measurement& m, const render::Scene& s) {
@@ -44,8 +45,9 @@ TEST_CASE("render::renderMeasureCpu gives the GL measurement view's pixels") {
         render::Scene s;
         double fov;
     };
-    for (const Case& k : {Case{makeScene(brdf::Model::GGX, 0.1, 60), 30.0}, Case{makeScene(brdf::Model::Phong, 1e4, 30), 3.0},
-                          Case{makeScene(brdf::Model::GGX, 0.5, 20), 110.0}}) {
+    for (const Case& k :
+         {Case{makeScene(brdf::Model::GGX, 0.1, 60), 30.0}, Case{makeScene(brdf::Model::Phong, 1e4, 30), 3.0},
+          Case{makeScene(brdf::Model::GGX, 0.5, 20), 110.0}}) {
         const render::Scene& s = k.s;
         for (const dvec2 jitter : {dvec2(0.0), dvec2(0.375, -0.125)}) {
             CAPTURE(s);
@@ -76,7 +78,8 @@ TEST_CASE("render::renderMeasureCpu gives the GL measurement view's pixels") {
             CHECK(worstL < 1e-4);
             CHECK(worstUV < 2e-4 * pitch);  // float rays
             CHECK(worstW < 3e-6);
-            MESSAGE("GL vs CPU view, fov " << fov << ": L " << worstL << ", u v " << worstUV / pitch << " px, w " << worstW);
+            MESSAGE("GL vs CPU view, fov " << fov << ": L " << worstL << ", u v " << worstUV / pitch << " px, w "
+                                           << worstW);
         }
     }
 }

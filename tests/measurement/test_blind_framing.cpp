@@ -25,9 +25,10 @@ std::shared_ptr<const brdf_file::BrdfFile> shipped(const std::string& name, cons
 
 render::Scene fromText(const std::string& shader, double incidence) {
     render::Scene s;
-    s.brdfFile = std::make_shared<brdf_file::BrdfFile>(brdf_file::parse(
-        "analytic\n::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n" + shader + "\n}\n::end shader\n",
-        "t.brdf"));
+    s.brdfFile = std::make_shared<brdf_file::BrdfFile>(
+        brdf_file::parse("analytic\n::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) {\n" + shader +
+                             "\n}\n::end shader\n",
+                         "t.brdf"));
     s.light.incidenceDeg = incidence;
     return s;
 }
@@ -43,9 +44,9 @@ TEST_CASE("measurement::measureBlind each shipped .brdf file measures as its bui
         brdf::Model model;
         double param;
     };
-    for (const Case& c : {Case{"phong", "n=1000", brdf::Model::Phong, 1000}, Case{"blinn", "n=1000", brdf::Model::Blinn, 1000},
-                          Case{"beckmann", "m=0.1", brdf::Model::Beckmann, 0.1},
-                          Case{"ggx", "alpha=0.1", brdf::Model::GGX, 0.1}}) {
+    for (const Case& c :
+         {Case{"phong", "n=1000", brdf::Model::Phong, 1000}, Case{"blinn", "n=1000", brdf::Model::Blinn, 1000},
+          Case{"beckmann", "m=0.1", brdf::Model::Beckmann, 0.1}, Case{"ggx", "alpha=0.1", brdf::Model::GGX, 0.1}}) {
         for (double inc : {0.0, 30.0, 60.0, 75.0}) {
             CAPTURE(c.file);
             CAPTURE(inc);
@@ -73,9 +74,9 @@ TEST_CASE("measurement::measureBlind agrees with twin-seeded framing on built-in
         double param, incidence;
     };
     // Phong n = 1e6 is 0.07 deg wide: it falls between the pixel centres of the first wide render.
-    for (const Case& c : {Case{brdf::Model::Phong, 1e6, 30}, Case{brdf::Model::Blinn, 5000, 60},
-                          Case{brdf::Model::GGX, 0.1, 45}, Case{brdf::Model::GGX, 0.3, 85},
-                          Case{brdf::Model::Beckmann, 0.4, 20}}) {
+    for (const Case& c :
+         {Case{brdf::Model::Phong, 1e6, 30}, Case{brdf::Model::Blinn, 5000, 60}, Case{brdf::Model::GGX, 0.1, 45},
+          Case{brdf::Model::GGX, 0.3, 85}, Case{brdf::Model::Beckmann, 0.4, 20}}) {
         CAPTURE(c.param);
         CAPTURE(c.incidence);
         const render::Scene s = test::makeScene(c.model, c.param, c.incidence);
@@ -104,8 +105,10 @@ TEST_CASE("measurement::measureBlind error estimate from resolution convergence 
             REQUIRE(m.halfResolution);
             const analysis::Shape& h = *m.halfResolution;
             CHECK(std::abs(m.shape.aspect - ref.shape.aspect) <= std::abs(m.shape.aspect - h.aspect) + 1e-6);
-            CHECK(std::abs(m.shape.major_deg - ref.shape.major_deg) <= std::abs(m.shape.major_deg - h.major_deg) + 1e-6);
-            CHECK(std::abs(m.shape.minor_deg - ref.shape.minor_deg) <= std::abs(m.shape.minor_deg - h.minor_deg) + 1e-6);
+            CHECK(std::abs(m.shape.major_deg - ref.shape.major_deg) <=
+                  std::abs(m.shape.major_deg - h.major_deg) + 1e-6);
+            CHECK(std::abs(m.shape.minor_deg - ref.shape.minor_deg) <=
+                  std::abs(m.shape.minor_deg - h.minor_deg) + 1e-6);
         }
     }
 }

@@ -33,7 +33,9 @@ TEST_CASE("measurement::measureGl Phong reflection lobe stays circular") {
 
 TEST_CASE("measurement::measureGl GGX NDF lobe matches the reference table") {
     // ../shared/notes/measurement.md: GGX alpha = 0.1, f proportional to D, frac = 0.5.
-    struct Row { double inc, aspect, major, minor; };
+    struct Row {
+        double inc, aspect, major, minor;
+    };
     for (const Row r : {Row{0, 1.00000, 7.4175, 7.4175}, Row{30, 0.86593, 7.4170, 6.4226},
                         Row{60, 0.50173, 7.4059, 3.7158}, Row{75, 0.26404, 7.3636, 1.9443}}) {
         CAPTURE(r.inc);
@@ -60,8 +62,8 @@ TEST_CASE("measurement::measureGl narrow microfacet lobes narrow as cos theta_i"
 }
 
 TEST_CASE("measurement::measureGl eccentricity rises monotonically for microfacet lobes") {
-    for (auto [model, param] : {std::pair{brdf::Model::GGX, 0.1}, {brdf::Model::Beckmann, 0.1},
-                                {brdf::Model::Blinn, 200.0}}) {
+    for (auto [model, param] :
+         {std::pair{brdf::Model::GGX, 0.1}, {brdf::Model::Beckmann, 0.1}, {brdf::Model::Blinn, 200.0}}) {
         double previous = -1;
         for (double inc = 0; inc <= 85; inc += 5) {
             const auto m = glMeasure(makeScene(model, param, inc));
@@ -73,8 +75,10 @@ TEST_CASE("measurement::measureGl eccentricity rises monotonically for microface
 }
 
 TEST_CASE("measurement::measureGl agrees with the CPU double reference") {
-    for (const auto& lobe : {std::pair{brdf::Model::Phong, 300.0}, {brdf::Model::Blinn, 300.0},
-                             {brdf::Model::Beckmann, 0.15}, {brdf::Model::GGX, 0.2}}) {
+    for (const auto& lobe : {std::pair{brdf::Model::Phong, 300.0},
+                             {brdf::Model::Blinn, 300.0},
+                             {brdf::Model::Beckmann, 0.15},
+                             {brdf::Model::GGX, 0.2}}) {
         const brdf::Model model = lobe.first;
         const double param = lobe.second;
         for (double inc : {0.0, 20.0, 45.0, 70.0, 80.0}) {

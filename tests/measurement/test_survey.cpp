@@ -1,8 +1,8 @@
 // The hemisphere survey (the global peak and every part of the region, before any framing) and the
 // scan-line reference built on it.
 
-#include "measurement/lobe_survey.hpp"
 #include "hilite/measurement/measure_scene.hpp"
+#include "measurement/lobe_survey.hpp"
 #include "support/keys.hpp"
 
 #include <doctest/doctest.h>
@@ -15,7 +15,8 @@ const char* kSweep = "model=ggx roughness=0.1 geometry=smith fresnel=schlick f0=
 
 }  // namespace
 
-TEST_CASE("survey: GGX 0.1 + Smith + Schlick 0.04 has a second part above the horizon at 58-64 deg, one part at 45 and 65") {
+TEST_CASE(
+    "survey: GGX 0.1 + Smith + Schlick 0.04 has a second part above the horizon at 58-64 deg, one part at 45 and 65") {
     for (auto [t, parts] : {std::pair{45.0, 1}, {58.0, 2}, {60.0, 2}, {64.0, 2}, {65.0, 1}}) {
         const double ti = t;  // a structured binding cannot be captured by CAPTURE's lambda in C++17 (clang)
         CAPTURE(ti);
@@ -28,15 +29,18 @@ TEST_CASE("survey: GGX 0.1 + Smith + Schlick 0.04 has a second part above the ho
     }
 }
 
-TEST_CASE("survey: the global peak on the horizon (GGX 0.1 + Smith + Schlick at 72 deg) and a lobe without one (G = 1)") {
+TEST_CASE(
+    "survey: the global peak on the horizon (GGX 0.1 + Smith + Schlick at 72 deg) and a lobe without one (G = 1)") {
     const auto r = test::resolveKeys(std::string(kSweep) + "72");
     const measurement::LobeSurvey s = measurement::surveyLobe(r.scene, 0.5);
     CHECK(s.peakOnHorizon);
     CHECK(s.peakDirection.z < 1e-6);
     CHECK(s.peakUV.x == doctest::Approx(-deg2rad(18.0)).epsilon(1e-6));  // the horizon below the mirror direction
-    const auto g1 = test::resolveKeys("model=beckmann roughness=0.1 geometry=none fresnel=schlick f0=0.04 incidence=30");
+    const auto g1 =
+        test::resolveKeys("model=beckmann roughness=0.1 geometry=none fresnel=schlick f0=0.04 incidence=30");
     CHECK(measurement::surveyLobe(g1.scene, 0.5).unbounded);
-    const auto smith = test::resolveKeys("model=beckmann roughness=0.1 geometry=smith fresnel=schlick f0=0.04 incidence=30");
+    const auto smith =
+        test::resolveKeys("model=beckmann roughness=0.1 geometry=smith fresnel=schlick f0=0.04 incidence=30");
     CHECK_FALSE(measurement::surveyLobe(smith.scene, 0.5).unbounded);
 }
 
@@ -57,7 +61,8 @@ TEST_CASE("scan-line reference: every part, each with its own ellipse, the peak'
     CHECK(m.aspect < 0.26);
 }
 
-TEST_CASE("scan-line reference: a region far smaller than its survey box, and one that touches the horizon at a point") {
+TEST_CASE(
+    "scan-line reference: a region far smaller than its survey box, and one that touches the horizon at a point") {
     // GGX 0.1 + Smith at 89.9 deg: the region is 0.05 deg long around a peak on the horizon (the survey's box: 10 deg).
     auto r = test::resolveKeys("model=ggx roughness=0.1 geometry=smith incidence=89.9");
     auto m = measurement::measureReference(r.scene, r.setup.options).shape;

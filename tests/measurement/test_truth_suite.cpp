@@ -72,7 +72,8 @@ TEST_CASE("truth suite: GL and the reference against the exhaustive scan-line tr
     REQUIRE(truth.size() >= 60);
     measurement::Session session;
     int compared = 0;
-    std::printf("%-100s %9s %9s %9s %3s %3s %3s  %s\n", "case", "truth", "ref-t", "gl-t", "tc", "rc", "gc", "flags ref | gl");
+    std::printf("%-100s %9s %9s %9s %3s %3s %3s  %s\n", "case", "truth", "ref-t", "gl-t", "tc", "rc", "gc",
+                "flags ref | gl");
     for (const TruthRow& t : truth) {
         CAPTURE(t.keys);
         const scene::Resolved r = test::resolveKeys(t.keys);
@@ -88,8 +89,8 @@ TEST_CASE("truth suite: GL and the reference against the exhaustive scan-line tr
         }
         const double ta = t.v.at("aspect"), ra = ref.aspect, ga = gl["aspect"].get<double>();
         const int tc = int(t.v.at("components")), rc = ref.components, gc = gl["components"].get<int>();
-        std::printf("%-100s %9.6f %+9.2e %+9.2e %3d %3d %3d  %s | %s\n", t.keys.c_str(), ta, ra - ta, ga - ta, tc, rc, gc,
-                    rf.c_str(), gf.c_str());
+        std::printf("%-100s %9.6f %+9.2e %+9.2e %3d %3d %3d  %s | %s\n", t.keys.c_str(), ta, ra - ta, ga - ta, tc, rc,
+                    gc, rf.c_str(), gf.c_str());
         ++compared;
         // The reference: converged, whatever the topology.
         CHECK(std::abs(ra - ta) <= 5e-4);

@@ -2,9 +2,9 @@
 // microsurface (micro/bounces.hpp), each against what must hold whatever the surface: every path leaves
 // (F = 1), the walk's first order is the analytic single scattering, repeated Fresnel saturates gold.
 
-#include "hilite/brdf/colour.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
+#include "hilite/brdf/colour.hpp"
 #include "hilite/micro/bounces.hpp"
 
 #include <doctest/doctest.h>

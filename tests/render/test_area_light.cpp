@@ -4,9 +4,9 @@
 
 #include "hilite/render/area_light.hpp"
 
-#include "hilite/brdf/evaluate.hpp"
 #include "brdf/integrate.hpp"
 #include "core/quadrature.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <doctest/doctest.h>
 
@@ -66,12 +66,12 @@ TEST_CASE("render::lightCap a glowing sphere delivers E = pi L (R/d)^2 cos theta
                 const double seed = kPi * cap.radiance * (R / d) * (R / d) * cosTheta;
                 CHECK(seed == doctest::Approx(l.intensity * cosTheta / (d * d)).epsilon(1e-12));
                 // The exact integral, about an arbitrary lobe centre, and the rule (exact for cos at any n).
-                const render::CapIntegral e =
-                    render::capExact(cap, glm::normalize(dvec3(0.2, 0.1, 1.0)), 0.1, cosine);
+                const render::CapIntegral e = render::capExact(cap, glm::normalize(dvec3(0.2, 0.1, 1.0)), 0.1, cosine);
                 CHECK(e.converged);
                 worst = std::max(worst, std::abs(e.value.x * cap.radiance - seed) / seed);
                 for (int n : {1, 2, 7})
-                    worstRule = std::max(worstRule, std::abs(render::capRule(cap, n, cosine).x * cap.radiance - seed) / seed);
+                    worstRule =
+                        std::max(worstRule, std::abs(render::capRule(cap, n, cosine).x * cap.radiance - seed) / seed);
             }
     MESSAGE("E = pi L (R/d)^2 cos theta: exact integral within " << worst << ", rule within " << worstRule);
     CHECK(worst < 1e-6);
@@ -120,8 +120,8 @@ TEST_CASE("render::capExact a lobe far narrower than the light: the albedo times
         CHECK(e.value.x == doctest::Approx(truth).epsilon(1e-7));
         const double rule = render::capRule(cap, render::kMaxRings, g).x;
         MESSAGE("Beckmann 1e-3 under a 2 deg disk at " << inc << " deg: exact/truth - 1 = " << e.value.x / truth - 1
-                                                      << " with " << e.evaluations << " evaluations; rule at 32 rings "
-                                                      << rule / truth - 1);
+                                                       << " with " << e.evaluations << " evaluations; rule at 32 rings "
+                                                       << rule / truth - 1);
         if (inc == 60.0) CHECK(std::abs(rule / truth - 1) > 1e-2);
     }
 }
@@ -164,7 +164,7 @@ TEST_CASE("render::lightRule the automatic rings meet their target, given rings 
     CHECK(tight.rings > chosen.rings);
     CHECK(tight.error <= 1e-6);
     MESSAGE("GGX 0.02 at 80 deg, sun: 1 ring " << one.error << "; auto " << chosen.rings << " rings " << chosen.error
-                                             << "; target 1e-6: " << tight.rings << " rings " << tight.error);
+                                               << "; target 1e-6: " << tight.rings << " rings " << tight.error);
     // A lobe much narrower than the rule's spacing: even 32 rings stay far from the exact integral.
     s.brdf.roughness = 2e-4;
     s.light.ruleTarget = 1e-3;

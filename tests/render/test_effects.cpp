@@ -59,10 +59,14 @@ TEST_CASE("render::programSources the program defines the named terms and no oth
     beckmannDielectric.diffuse = brdf::Diffuse::Lambert;
     const std::vector<Case> cases = {
         {"ggx, fresnel none, implicit G", ndfOnly, {"D_GGX"}, {"F_", "Lambda_", "G2_", "D_Beckmann", "Fd_", "Phong"}},
-        {"ggx + schlick + smith", full, {"D_GGX", "F_Schlick", "Lambda_GGX", "G2_SmithCorrelated"},
+        {"ggx + schlick + smith",
+         full,
+         {"D_GGX", "F_Schlick", "Lambda_GGX", "G2_SmithCorrelated"},
          {"F_Dielectric", "F_Conductor", "F_Spectral", "D_Beckmann", "Fd_", "Phong"}},
         {"phong", phong, {"Phong_Normalized"}, {"D_", "F_", "Lambda_", "HalfVector"}},
-        {"beckmann + dielectric + lambert", beckmannDielectric, {"D_Beckmann", "F_Dielectric"},
+        {"beckmann + dielectric + lambert",
+         beckmannDielectric,
+         {"D_Beckmann", "F_Dielectric"},
          {"F_Schlick", "F_Conductor", "D_GGX", "Lambda_"}},
     };
     for (const auto& c : cases) {

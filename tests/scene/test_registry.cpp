@@ -5,8 +5,8 @@
 #include "hilite/scene/resolve.hpp"
 #include "hilite/scene/scene_file.hpp"
 
-#include "hilite/core/error.hpp"
 #include "core/text.hpp"
+#include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
 
@@ -141,5 +141,6 @@ TEST_CASE("scene::sceneToml writes a file that reads back as the same values") {
     // A string with quotes and newlines stays one TOML string.
     scene::Values q;
     q.set("brdf", "we\"ird\nname.brdf");
-    CHECK(scene::parseSceneToml(scene::sceneToml(q), "q.toml").text("brdf").find("we\"ird\nname.brdf") != std::string::npos);
+    CHECK(scene::parseSceneToml(scene::sceneToml(q), "q.toml").text("brdf").find("we\"ird\nname.brdf") !=
+          std::string::npos);
 }

@@ -16,7 +16,9 @@ namespace scene = hilite::scene;
 
 namespace {
 
-hilite_test::Result run(const std::string& args, bool stdoutOnly = false) { return hilite_test::hilite(args, stdoutOnly); }
+hilite_test::Result run(const std::string& args, bool stdoutOnly = false) {
+    return hilite_test::hilite(args, stdoutOnly);
+}
 
 }  // namespace
 
@@ -62,8 +64,8 @@ TEST_CASE("measure --json rows carry every registry parameter that applies, as r
         CHECK(applicable >= 12);
     }
     // Values the user did not type but the scene rendered: the material's F0 stand-in, the anisotropic axes.
-    const auto iron = nlohmann::json::parse(
-        run("measure --model ggx --material iron --incidence 30 --size 64 --json", true).out);
+    const auto iron =
+        nlohmann::json::parse(run("measure --model ggx --material iron --incidence 30 --size 64 --json", true).out);
     CHECK(iron["fresnel"] == "schlick");
     CHECK(iron["f0"] == nlohmann::json::array({0.562, 0.565, 0.578}));
     const auto aniso = nlohmann::json::parse(

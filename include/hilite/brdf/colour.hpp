@@ -19,10 +19,10 @@ namespace hilite::brdf {
 constexpr int kChannelTableSize = 512;
 
 struct ReflectanceChannels {
-    std::string description;   ///< "gold: 471 wavelengths 360..830 nm" or "linear sRGB"
+    std::string description;       ///< "gold: 471 wavelengths 360..830 nm" or "linear sRGB"
     std::vector<double> lambdaNm;  ///< per channel: its wavelength (spectral), empty for sRGB channels
-    std::vector<dvec3> xyz;    ///< per channel: CIE XYZ weight under D65; summed over the channels, the white (Y = 1)
-    std::vector<dvec3> rgb;    ///< per channel: linear sRGB weight; each of R, G, B sums to 1 over the channels
+    std::vector<dvec3> xyz;     ///< per channel: CIE XYZ weight under D65; summed over the channels, the white (Y = 1)
+    std::vector<dvec3> rgb;     ///< per channel: linear sRGB weight; each of R, G, B sums to 1 over the channels
     std::vector<double> table;  ///< F per channel at kChannelTableSize angles, entry-major
 
     size_t size() const { return xyz.size(); }

@@ -13,8 +13,8 @@
 
 namespace hilite::brdf {
 
-struct Spectrum;  // brdf/spectral.hpp
-struct NdfTable;  // brdf/ndf_table.hpp
+struct Spectrum;      // brdf/spectral.hpp
+struct NdfTable;      // brdf/ndf_table.hpp
 struct EnergyTables;  // brdf/energy.hpp
 namespace merl {
 struct MeasuredBrdf;  // brdf/merl.hpp
@@ -75,7 +75,8 @@ std::vector<std::string> diffuseNames();
 std::vector<std::string> multiscatterNames();
 
 bool isMicrofacet(Model m);
-bool usesExponent(Model m);      ///< phong, phong-classic, blinn, retro take an exponent; beckmann, ggx, gaussian a roughness
+bool usesExponent(
+    Model m);  ///< phong, phong-classic, blinn, retro take an exponent; beckmann, ggx, gaussian a roughness
 bool allowsAnisotropy(Model m);  ///< beckmann, ggx
 
 struct Params {

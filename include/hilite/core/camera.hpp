@@ -28,8 +28,8 @@ struct PinholeCamera {
                                      int height, double distance = 1.0);
     /// The same view from an eye at `eye` (above the plane): the pixel at the image centre has exitant
     /// direction `center`. Under a point light the radiance depends on where the eye is.
-    static PinholeCamera measurementFrom(const MirrorChart& chart, const dvec3& eye, const dvec3& center,
-                                         double fovDeg, int width, int height);
+    static PinholeCamera measurementFrom(const MirrorChart& chart, const dvec3& eye, const dvec3& center, double fovDeg,
+                                         int width, int height);
     /// The photo view: a camera at `elevationDeg` above the plane and `distance` from the origin,
     /// at azimuth `azimuthDeg` (of the camera position), looking at the origin; world +z is up.
     static PinholeCamera photo(double elevationDeg, double azimuthDeg, double distance, double fovDeg, int width,

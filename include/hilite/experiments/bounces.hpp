@@ -24,7 +24,7 @@ constexpr double kMinBounceRoughness = 0.02, kMaxBounceRoughness = 1.5;
 /// What a study traces on: the paths and the field's tile ([bounces] keys, `brdf bounces` flags).
 struct BounceSettings {
     micro::BounceOptions options;
-    int texels = 1024;       ///< the field's tile, as the renders' (render/bumps.cpp)
+    int texels = 1024;  ///< the field's tile, as the renders' (render/bumps.cpp)
     int bumpsPerTile = 64;
 };
 std::ostream& operator<<(std::ostream&, const BounceSettings&);
@@ -34,15 +34,15 @@ void checkBounceSettings(const BounceSettings& s, bool asFlags);
 
 struct BounceStudy {
     double thetaDeg = 0;
-    brdf::Params params;              ///< the scene's lobe with Smith G2, single scattering
-    micro::BumpSpec spec;             ///< the traced field
+    brdf::Params params;   ///< the scene's lobe with Smith G2, single scattering
+    micro::BumpSpec spec;  ///< the traced field
     micro::TracedSurface surface = micro::TracedSurface::Hermite;
-    double hermiteRatio = 1;          ///< the traced surface's rms slope over m before its rescale
-    micro::BounceTally traced, walk;  ///< the height field; Smith's microsurface
-    double smithSingle = 0;           ///< E(mu): single scattering, F = 1 (brdf::albedo, rational Lambda)
+    double hermiteRatio = 1;                 ///< the traced surface's rms slope over m before its rescale
+    micro::BounceTally traced, walk;         ///< the height field; Smith's microsurface
+    double smithSingle = 0;                  ///< E(mu): single scattering, F = 1 (brdf::albedo, rational Lambda)
     dvec3 singleAlbedo{0.0}, kcAlbedo{0.0};  ///< with the scene's Fresnel: single scattering; + kulla-conty
     brdf::Colour tracedMultiple, walkMultiple, kcMultiple;  ///< colour of the light of orders >= 2 (kc: F_ms)
-    double seconds = 0;               ///< wall time of the study
+    double seconds = 0;                                     ///< wall time of the study
 };
 
 /// Checks the scene for a study (InputError naming the key): a beckmann model, isotropic, rough enough to

@@ -46,19 +46,19 @@ struct ModelFit {
     std::string model;
     nlohmann::ordered_json params;  ///< by registry name: {"roughness": 0.1} or {"exponent": 200}
     double residual = 0;
-    int rank = 0;                   ///< 1: the smallest residual
-    int evaluations = 0;            ///< measured sweeps (each thresholds x incidences measurements)
-    double ms = 0;                  ///< wall time of this model's fit
-    std::string stop;               ///< NLopt's reason to stop ("xtol reached", ...)
-    std::vector<FitSample> samples; ///< at the fitted parameters, in the target's order
+    int rank = 0;                    ///< 1: the smallest residual
+    int evaluations = 0;             ///< measured sweeps (each thresholds x incidences measurements)
+    double ms = 0;                   ///< wall time of this model's fit
+    std::string stop;                ///< NLopt's reason to stop ("xtol reached", ...)
+    std::vector<FitSample> samples;  ///< at the fitted parameters, in the target's order
 };
 
 struct FitResult {
-    std::string target;             ///< what was fitted, in words ("measured:gold.binary", "ggx roughness=0.1")
+    std::string target;  ///< what was fitted, in words ("measured:gold.binary", "ggx roughness=0.1")
     std::vector<double> angles, thresholds, weights;
-    std::vector<FitSample> samples; ///< the target's, incidence-major
-    std::vector<ModelFit> fits;     ///< in FitOptions::models order (rank says the ranking)
-    double aspectThreshold = 0.5;   ///< the threshold of the aspect residuals (the one nearest 0.5)
+    std::vector<FitSample> samples;  ///< the target's, incidence-major
+    std::vector<ModelFit> fits;      ///< in FitOptions::models order (rank says the ranking)
+    double aspectThreshold = 0.5;    ///< the threshold of the aspect residuals (the one nearest 0.5)
 };
 
 /// Checks the options (InputError naming the flag): models known and fittable, thresholds in (0, 1),

@@ -11,12 +11,12 @@
 namespace hilite::experiments {
 
 struct RunOptions {
-    std::string experiment;       ///< a file, or the name of one shipped in experiments/
-    std::string out;              ///< "" = results/<experiment name>
-    bool resume = false;          ///< keep the completed rows already in `out`, run the rest
-    int shardK = 1, shardN = 1;   ///< configurations i with i mod N = K - 1
-    std::string backend;          ///< "" = $HILITE_GL_BACKEND, else auto
-    std::string outName = "-o";   ///< how messages name the output folder (the flag, or a keyword)
+    std::string experiment;      ///< a file, or the name of one shipped in experiments/
+    std::string out;             ///< "" = results/<experiment name>
+    bool resume = false;         ///< keep the completed rows already in `out`, run the rest
+    int shardK = 1, shardN = 1;  ///< configurations i with i mod N = K - 1
+    std::string backend;         ///< "" = $HILITE_GL_BACKEND, else auto
+    std::string outName = "-o";  ///< how messages name the output folder (the flag, or a keyword)
     /// Only check: the file, every configuration, every .brdf it names and the output folder, as a run does
     /// before it writes; then return, nothing measured or written (RunSummary::configurations says how many).
     bool check = false;
@@ -25,11 +25,11 @@ struct RunOptions {
 };
 
 struct RunSummary {
-    std::string name, dir;   ///< the experiment's name and the folder written
+    std::string name, dir;      ///< the experiment's name and the folder written
     size_t configurations = 0;  ///< in the whole experiment
     size_t measured = 0;        ///< rows measured by this call (the rest were resumed, or other shards')
     double seconds = 0;
-    bool finalized = false;     ///< plots and summary.md written (not for a shard of several)
+    bool finalized = false;  ///< plots and summary.md written (not for a shard of several)
 };
 
 /// "K/N" of --shard into k, n (1/1 for ""); InputError naming `name` otherwise.

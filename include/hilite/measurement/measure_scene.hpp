@@ -2,8 +2,8 @@
 // One highlight measurement of a scene, end to end: aim and zoom the measurement view (automatic
 // framing), render, read back, analyse. Also the double-precision reference of the same scene.
 
-#include "hilite/core/camera.hpp"
 #include "hilite/analysis/highlight.hpp"
+#include "hilite/core/camera.hpp"
 #include "hilite/render/scene.hpp"
 #include "hilite/scene/setup.hpp"
 

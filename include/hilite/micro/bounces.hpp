@@ -44,9 +44,9 @@ constexpr int kExitBins = 11;
 
 struct BounceOptions {
     TracedSurface surface = TracedSurface::Hermite;
-    long paths = 100000;     ///< light paths, split evenly into `batches`
-    int batches = 16;        ///< independent batches (their spread is the noise)
-    uint64_t seed = 1;       ///< the paths' seed (the field has its own, BumpSpec::seed)
+    long paths = 100000;       ///< light paths, split evenly into `batches`
+    int batches = 16;          ///< independent batches (their spread is the noise)
+    uint64_t seed = 1;         ///< the paths' seed (the field has its own, BumpSpec::seed)
     double stepTexels = 0.25;  ///< traced: the march step along the ray, in texels
 };
 std::ostream& operator<<(std::ostream&, const BounceOptions&);
@@ -61,16 +61,16 @@ struct Estimate {
 struct BounceTally {
     double thetaDeg = 0;
     long paths = 0;
-    std::vector<Estimate> energy;           ///< share of the light that leaves after k bounces, F = 1
+    std::vector<Estimate> energy;                ///< share of the light that leaves after k bounces, F = 1
     std::vector<std::vector<double>> reflected;  ///< [order][channel]: light that leaves after k bounces, with F
-    std::vector<brdf::Colour> colour;       ///< [order]: the colour of that light, reflected / energy (its mean F product)
-    std::vector<Estimate> chroma;           ///< [order]: C* of that colour, the spread over the batches as its error
-    Estimate multiple;                      ///< energy of orders >= 2, F = 1
-    Estimate total;                         ///< every order, F = 1 (1 - stuck)
-    Estimate stuck;                         ///< paths still inside after kMaxBounces (and rays lost to a bad hit)
-    std::vector<Estimate> reflectedRgb;     ///< [R, G, B]: the albedo with F, every order, linear sRGB
-    Estimate reflectedY;                    ///< the albedo with F, every order, luminance of reflectedRgb
-    long backHits = 0;                      ///< traced: hits on a facet facing away from the ray (should be 0)
+    std::vector<brdf::Colour> colour;    ///< [order]: the colour of that light, reflected / energy (its mean F product)
+    std::vector<Estimate> chroma;        ///< [order]: C* of that colour, the spread over the batches as its error
+    Estimate multiple;                   ///< energy of orders >= 2, F = 1
+    Estimate total;                      ///< every order, F = 1 (1 - stuck)
+    Estimate stuck;                      ///< paths still inside after kMaxBounces (and rays lost to a bad hit)
+    std::vector<Estimate> reflectedRgb;  ///< [R, G, B]: the albedo with F, every order, linear sRGB
+    Estimate reflectedY;                 ///< the albedo with F, every order, luminance of reflectedRgb
+    long backHits = 0;                   ///< traced: hits on a facet facing away from the ray (should be 0)
     /// Where the first reflection goes, by exitBin (bin 0: down, wo.z < 0; bin i >= 1: cos(theta_o) in
     /// [(i - 1), i) / (kExitBins - 1)): its share of the light, and the share of that which leaves at once.
     std::vector<double> firstExitShare, firstExitEscape;

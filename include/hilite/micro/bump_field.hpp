@@ -37,10 +37,10 @@ std::ostream& operator<<(std::ostream&, BumpKind);
 
 struct BumpSpec {
     BumpKind kind = BumpKind::None;
-    double roughness = 0.1;     ///< Beckmann m / GGX alpha of the slope distribution
-    uint64_t seed = 1;          ///< the random field's seed (std::mt19937_64)
-    int texels = 1024;          ///< tile resolution, a power of two in [64, 4096]
-    int bumpsPerTile = 64;      ///< centre of the ring spectrum, cycles per tile; texels / bumpsPerTile >= 8
+    double roughness = 0.1;  ///< Beckmann m / GGX alpha of the slope distribution
+    uint64_t seed = 1;       ///< the random field's seed (std::mt19937_64)
+    int texels = 1024;       ///< tile resolution, a power of two in [64, 4096]
+    int bumpsPerTile = 64;   ///< centre of the ring spectrum, cycles per tile; texels / bumpsPerTile >= 8
     bool operator<(const BumpSpec& o) const;
 };
 std::ostream& operator<<(std::ostream&, const BumpSpec&);
@@ -73,8 +73,9 @@ const BumpField& cachedBumpField(const BumpSpec& spec);
 /// How well the realised slopes follow the target distribution: the field as rendered (bilinear between the
 /// texel centres), rms exactly, the distribution at 2 x 2 stratified points of every cell.
 struct SlopeStats {
-    double rmsX = 0, rmsY = 0;      ///< realised sqrt(mean s_x^2), sqrt(mean s_y^2); target roughness / sqrt(2) each (Beckmann)
-    double ks = 0;                  ///< Kolmogorov-Smirnov distance of the radial CDF from the target's
+    double rmsX = 0,
+           rmsY = 0;  ///< realised sqrt(mean s_x^2), sqrt(mean s_y^2); target roughness / sqrt(2) each (Beckmann)
+    double ks = 0;    ///< Kolmogorov-Smirnov distance of the radial CDF from the target's
     std::vector<double> binShares;  ///< share of points in each of 8 equal-probability bins of |s| (target 1/8 each)
     double maxSlopeDeg = 0;         ///< steepest facet's tilt theta_m
 };

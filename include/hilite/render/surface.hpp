@@ -19,10 +19,10 @@ const char* toString(BumpFilter);
 std::ostream& operator<<(std::ostream&, BumpFilter);
 
 struct Surface {
-    bool bumps = false;           ///< the material's NDF as explicit geometry instead of the analytic BRDF
-    double bumpPeriodPx = 4.0;    ///< bump period in pixels of the view, at the image centre, across the view
+    bool bumps = false;         ///< the material's NDF as explicit geometry instead of the analytic BRDF
+    double bumpPeriodPx = 4.0;  ///< bump period in pixels of the view, at the image centre, across the view
     uint64_t seed = 1;
-    int samples = 0;              ///< sub-pixel samples per axis: 0 = automatic (4 per bump period, at most kMaxSamples)
+    int samples = 0;  ///< sub-pixel samples per axis: 0 = automatic (4 per bump period, at most kMaxSamples)
     double samplesPerPeriod = 4;  ///< automatic: patches per bump period along each axis
     double sunDeg = 0.1;          ///< the sun's angular standard deviation per axis, degrees (Gaussian profile)
     int texels = 1024;            ///< tile resolution

@@ -37,16 +37,16 @@ enum class Kind {
 };
 
 struct Param {
-    std::string name;             ///< the scene-file key and the flag without dashes: roughness_y, --roughness-y
+    std::string name;  ///< the scene-file key and the flag without dashes: roughness_y, --roughness-y
     Table table;
     Kind kind;
-    std::string def;              ///< the default as text; "" = unset (derived or optional, see help)
-    double lo = 0, hi = 0;        ///< Number, Integer, Rgb, Angles, Size
+    std::string def;        ///< the default as text; "" = unset (derived or optional, see help)
+    double lo = 0, hi = 0;  ///< Number, Integer, Rgb, Angles, Size
     bool openLo = false, openHi = false;
     std::vector<std::string> choices;  ///< Choice
-    std::string unit;             ///< "deg", "px", "s", "" for none
+    std::string unit;                  ///< "deg", "px", "s", "" for none
     std::string help;
-    std::string appliesTo;        ///< in words: the scenes the parameter means something for (help, README)
+    std::string appliesTo;  ///< in words: the scenes the parameter means something for (help, README)
     /// Whether the resolved scene uses the parameter (its row carries it); null: every scene.
     bool (*applies)(const Resolved&) = nullptr;
     /// The row column and its value as resolved and rendered; column "": not a row field (a setting of the

@@ -21,7 +21,8 @@ class Values {
 public:
     struct Value {
         std::string text;
-        std::string origin;  ///< "" = the command line (messages name the flag), else "scene.toml:4: material.roughness"
+        std::string
+            origin;  ///< "" = the command line (messages name the flag), else "scene.toml:4: material.roughness"
     };
     /// Sets a registered parameter (InputError for an unknown name). The text is not checked here.
     void set(const std::string& name, const std::string& text, const std::string& origin = "");
@@ -52,16 +53,16 @@ struct Resolved {
     render::Scene scene;         ///< light.incidenceDeg: the first of `angles`
     std::vector<double> angles;  ///< --incidence: one, a list or a range
     MeasureSetup setup;
-    double tolerance = 0;        ///< > 0: choose the settings that reach this aspect error
-    bool reference = false;      ///< measure with the CPU double reference
-    View view = View::Measure;   ///< render only: a measurement always uses the measurement view
-    double fovDeg = 0;           ///< 0: --fov auto, the view's default (render) or automatic framing (measure)
+    double tolerance = 0;                ///< > 0: choose the settings that reach this aspect error
+    bool reference = false;              ///< measure with the CPU double reference
+    View view = View::Measure;           ///< render only: a measurement always uses the measurement view
+    double fovDeg = 0;                   ///< 0: --fov auto, the view's default (render) or automatic framing (measure)
     std::optional<double> elevationDeg;  ///< photo view; none: --elevation auto, 90 - incidence
-    std::string backend;         ///< as given ("" = $HILITE_GL_BACKEND or auto), checked
-    int gpu = -1;                ///< --gpu: the EGL device (egl-device, auto), checked against the devices; -1 unset
+    std::string backend;                 ///< as given ("" = $HILITE_GL_BACKEND or auto), checked
+    int gpu = -1;  ///< --gpu: the EGL device (egl-device, auto), checked against the devices; -1 unset
     double shaderTimeoutS = 10;
     int spectralStepNm = 5;
-    Values values;               ///< what was resolved, as given
+    Values values;  ///< what was resolved, as given
 };
 
 /// Which command reads the values: the checks that differ (render's wider field of view; brdf's
