@@ -94,14 +94,16 @@ if(NOT rc EQUAL 0)
 endif()
 message(STATUS "pkg-config --cflags --libs hilite: ${flags}")
 separate_arguments(flags UNIX_COMMAND "${flags}")
-run(${CXX} -std=c++17 -O2 ${src}/pkgconfig_consumer.cpp ${flags} -o ${WORK_DIR}/pkgconfig_consumer)
+# In a folder of its own: beside the build tree's bin/, ../share/hilite would be the build's share files.
+file(MAKE_DIRECTORY ${WORK_DIR}/pkgconfig/bin)
+run(${CXX} -std=c++17 -O2 ${src}/pkgconfig_consumer.cpp ${flags} -o ${WORK_DIR}/pkgconfig/bin/pkgconfig_consumer)
 step("pkg-config consumer built")
-run(${CMAKE_COMMAND} -E env ${clean_env} ${WORK_DIR}/pkgconfig_consumer)
+run(${CMAKE_COMMAND} -E env ${clean_env} ${WORK_DIR}/pkgconfig/bin/pkgconfig_consumer)
 step("pkg-config consumer passed")
 
 # -- 4. Without its share files the library says where it looked and how to tell it (exit 2 from the consumer).
 file(RENAME ${prefix}/share ${prefix}/share.away)
-execute_process(COMMAND ${CMAKE_COMMAND} -E env ${clean_env} ${WORK_DIR}/pkgconfig_consumer
+execute_process(COMMAND ${CMAKE_COMMAND} -E env ${clean_env} ${WORK_DIR}/pkgconfig/bin/pkgconfig_consumer
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 file(RENAME ${prefix}/share.away ${prefix}/share)
 if(NOT rc EQUAL 2 OR NOT err MATCHES "HILITE_SHARE_DIR" OR NOT err MATCHES "looked in .*/share/hilite/shaders \\(beside [^)]*libhilite")

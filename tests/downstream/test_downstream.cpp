@@ -17,6 +17,7 @@ namespace {
 /// `other`: measure those values instead (at the same incidence), on the same Session.
 nlohmann::json measureGgx(double incidenceDeg, hilite::scene::Values* other = nullptr) {
     static hilite::measurement::Session session;  // one GL context for every measurement
+    session.makeCurrent();  // another test case's Session may have made its own context current since
     if (other) {
         other->set("incidence", std::to_string(incidenceDeg));
         return session.measureOne(hilite::scene::resolve(*other));
