@@ -10,6 +10,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 #include <functional>
 #include <initializer_list>
@@ -132,16 +134,16 @@ TEST_CASE("analysis::measureImage") {
                 const Shape s = analyse(img, opt);
                 // In/out pixels: lattice noise, ~1e-3 here; sub-pixel coverage: ~1e-4.
                 const double axisTol = subpixel ? 2e-3 : 1e-2, aspectTol = subpixel ? 5e-4 : 5e-3;
-                CHECK(std::abs(s.aspect - ref.aspect) < aspectTol);
+                CHECK_NEAR(s.aspect, ref.aspect, aspectTol);
                 CHECK(s.major_deg == doctest::Approx(ref.major_deg).epsilon(axisTol));
                 CHECK(s.minor_deg == doctest::Approx(ref.minor_deg).epsilon(axisTol));
                 CHECK(s.area_deg2 == doctest::Approx(ref.area_deg2).epsilon(2 * axisTol));
-                CHECK(std::abs(s.centroid_u_deg - ref.centroid_u_deg) < 0.01);
-                CHECK(std::abs(s.centroid_v_deg) < 1e-6);
+                CHECK_NEAR(s.centroid_u_deg, ref.centroid_u_deg, 0.01);
+                CHECK_NEAR(s.centroid_v_deg, 0.0, 1e-6);
                 CHECK(s.fwhm_u_deg == doctest::Approx(ref.fwhm_u_deg).epsilon(0.01));
                 CHECK(s.fwhm_v_deg == doctest::Approx(ref.fwhm_v_deg).epsilon(0.01));
-                if (thetaDeg > 0) CHECK(std::abs(s.orientation_deg) < 0.01);
-                CHECK(std::abs(s.peak_u_deg) < 0.1);  // within a pixel (0.058 deg) of wr
+                if (thetaDeg > 0) CHECK_NEAR(s.orientation_deg, 0.0, 0.01);
+                CHECK_NEAR(s.peak_u_deg, 0.0, 0.1);  // within a pixel (0.058 deg) of wr
                 CHECK(s.peak == doctest::Approx(ref.peak).epsilon(1e-3));
                 CHECK(s.flags.empty());
             }
@@ -221,7 +223,7 @@ TEST_CASE("analysis::measureImage") {
                     CHECK(fast.area_deg2 == doctest::Approx(naive.area_deg2).epsilon(1e-12));
                     CHECK(fast.major_deg == doctest::Approx(naive.major_deg).epsilon(1e-9));
                     // (absolute: a single row of pixels along a line has minor = 0 up to rounding)
-                    CHECK(std::abs(fast.minor_deg - naive.minor_deg) <= 1e-6 * naive.major_deg);
+                    CHECK_NEAR(fast.minor_deg, naive.minor_deg, 1e-6 * naive.major_deg);
                     CHECK(fast.centroid_u_deg == doctest::Approx(naive.centroid_u_deg).epsilon(1e-12));
                 }
             }
@@ -350,7 +352,7 @@ TEST_CASE("analysis::measureImage flags") {
         CHECK(ref.has(Flag::HorizonCut));
         CHECK_FALSE(s.has(Flag::Clipped));
         // Pixels beside the horizon count whole: a bias of a fraction of a pixel along the cut.
-        CHECK(std::abs(s.aspect - ref.aspect) < 0.005);
+        CHECK_NEAR(s.aspect, ref.aspect, 0.005);
         CHECK(s.major_deg == doctest::Approx(ref.major_deg).epsilon(0.01));
         CHECK(s.minor_deg == doctest::Approx(ref.minor_deg).epsilon(0.02));
     }

@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 #include <initializer_list>
 
@@ -75,12 +77,12 @@ TEST_CASE("analysis::measureReference") {
         CHECK(s.major_deg == doctest::Approx(rad2deg(a * std::sqrt(kLn2))).epsilon(1e-9));
         CHECK(s.minor_deg == doctest::Approx(rad2deg(b * std::sqrt(kLn2))).epsilon(1e-9));
         CHECK(s.aspect == doctest::Approx(b / a).epsilon(1e-9));
-        CHECK(std::abs(s.orientation_deg) < 1e-9);
+        CHECK_NEAR(s.orientation_deg, 0.0, 1e-9);
         CHECK(s.area_deg2 == doctest::Approx(kPi * rad2deg(a) * rad2deg(b) * kLn2).epsilon(1e-9));
         CHECK(s.fwhm_u_deg == doctest::Approx(rad2deg(2 * a * std::sqrt(kLn2))).epsilon(1e-9));
         CHECK(s.fwhm_v_deg == doctest::Approx(rad2deg(2 * b * std::sqrt(kLn2))).epsilon(1e-9));
         CHECK(s.peak == doctest::Approx(1.0).epsilon(1e-15));
-        CHECK(std::abs(s.centroid_u_deg) < 1e-9);
+        CHECK_NEAR(s.centroid_u_deg, 0.0, 1e-9);
         CHECK(s.flags.empty());
         CHECK(s.region_pixels == 0);
         CHECK(std::isinf(s.minor_pixels));
@@ -109,7 +111,7 @@ TEST_CASE("analysis::measureReference") {
             CHECK(s.major_deg == doctest::Approx(exact).epsilon(1e-9));
             CHECK(s.minor_deg == doctest::Approx(exact).epsilon(1e-9));
             CHECK(s.aspect == doctest::Approx(1.0).epsilon(1e-9));
-            CHECK(std::abs(s.centroid_u_deg) < 1e-9);
+            CHECK_NEAR(s.centroid_u_deg, 0.0, 1e-9);
             CHECK(s.flags.empty());
         }
     }
@@ -133,13 +135,13 @@ TEST_CASE("analysis::measureReference") {
             CAPTURE(row.thetaDeg);
             const MirrorChart chart(deg2rad(row.thetaDeg), 0.0);
             const Shape s = reference(chart, test::ggxNdfLobe(chart, 0.1));
-            CHECK(std::abs(s.aspect - row.aspect) < 2e-4);
-            CHECK(std::abs(s.eccentricity - row.eccentricity) < 2e-4);
+            CHECK_NEAR(s.aspect, row.aspect, 2e-4);
+            CHECK_NEAR(s.eccentricity, row.eccentricity, 2e-4);
             CHECK(s.major_deg == doctest::Approx(row.major).epsilon(5e-4));
             CHECK(s.minor_deg == doctest::Approx(row.minor).epsilon(5e-4));
-            CHECK(std::abs(s.centroid_u_deg - row.cu) < 1e-3);
-            CHECK(std::abs(s.centroid_v_deg) < 1e-9);
-            if (row.thetaDeg > 0) CHECK(std::abs(s.orientation_deg) < 1e-6);  // major axis along u (a circle at 0)
+            CHECK_NEAR(s.centroid_u_deg, row.cu, 1e-3);
+            CHECK_NEAR(s.centroid_v_deg, 0.0, 1e-9);
+            if (row.thetaDeg > 0) CHECK_NEAR(s.orientation_deg, 0.0, 1e-6);  // major axis along u (a circle at 0)
             CHECK(s.flags.empty());
         }
     }
@@ -148,25 +150,25 @@ TEST_CASE("analysis::measureReference") {
         const LobeFunction f = test::chartLobe(chart, test::ggxNdfLobe(chart, 0.1));
         const Shape s = measureReference(f, opt, 0.5);
         CHECK(s.has(Flag::HorizonCut));
-        CHECK(std::abs(s.aspect - 0.11798) < 5e-4);
+        CHECK_NEAR(s.aspect, 0.11798, 5e-4);
         CHECK(s.major_deg == doctest::Approx(6.3043).epsilon(2e-3));
         CHECK(s.minor_deg == doctest::Approx(0.7438).epsilon(2e-3));
-        CHECK(std::abs(s.centroid_u_deg - 1.687) < 5e-3);
+        CHECK_NEAR(s.centroid_u_deg, 1.687, 5e-3);
         // Against the brute-force grid, which shares nothing with the polar contour.
         Shape b;
         setEllipse(b, bruteMoments(f, 0.5 * s.peak, {-0.1, -0.03}, {0.25, 0.03}, 1500));
         CHECK(s.major_deg == doctest::Approx(b.major_deg).epsilon(5e-4));
         CHECK(s.minor_deg == doctest::Approx(b.minor_deg).epsilon(5e-4));
         CHECK(s.area_deg2 == doctest::Approx(b.area_deg2).epsilon(5e-4));
-        CHECK(std::abs(s.centroid_u_deg - b.centroid_u_deg) < 2e-3);
+        CHECK_NEAR(s.centroid_u_deg, b.centroid_u_deg, 2e-3);
     }
     SUBCASE("full microfacet BRDF (F = 1, GGX 0.1, Smith G2), 45 deg: the off-specular shift") {
         const MirrorChart chart(deg2rad(45.0), 0.0);
         const Shape s = reference(chart, test::ggxBrdfLobe(chart, 0.1));
-        CHECK(std::abs(s.aspect - 0.69421) < 2e-4);
+        CHECK_NEAR(s.aspect, 0.69421, 2e-4);
         CHECK(s.major_deg == doctest::Approx(7.5702).epsilon(5e-4));
         CHECK(s.minor_deg == doctest::Approx(5.2553).epsilon(5e-4));
-        CHECK(std::abs(s.centroid_u_deg - (-0.79)) < 5e-3);
+        CHECK_NEAR(s.centroid_u_deg, (-0.79), 5e-3);
         CHECK(s.peak_u_deg < 0.0);  // the peak itself moves away from the normal too
     }
     SUBCASE("peak on the horizon: a lobe centred below it") {
@@ -180,7 +182,7 @@ TEST_CASE("analysis::measureReference") {
         const Shape s = measureReference(f, opt, 0.5);
         CHECK(s.has(Flag::HorizonCut));
         CHECK(s.peak_u_deg == doctest::Approx(-10.0).epsilon(1e-9));
-        CHECK(std::abs(s.peak_v_deg) < 1e-6);
+        CHECK_NEAR(s.peak_v_deg, 0.0, 1e-6);
         Shape b;
         setEllipse(b, bruteMoments(f, 0.5 * s.peak, {-0.18, -0.12}, {-0.14, 0.12}, 1500));
         CHECK(s.area_deg2 == doctest::Approx(b.area_deg2).epsilon(1e-3));

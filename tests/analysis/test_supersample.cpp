@@ -9,6 +9,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 
 using namespace hilite;
@@ -32,12 +34,12 @@ TEST_CASE("analysis::jitterGrid") {
         REQUIRE(g.size() == size_t(n * n));
         dvec2 mean(0.0);
         for (const dvec2 j : g) {
-            CHECK(std::abs(j.x) < 0.5);
-            CHECK(std::abs(j.y) < 0.5);
+            CHECK_NEAR(j.x, 0.0, 0.5);
+            CHECK_NEAR(j.y, 0.0, 0.5);
             mean += j / double(n * n);
         }
-        CHECK(std::abs(mean.x) < 1e-12);  // symmetric: the samples' mean is the pixel centre
-        CHECK(std::abs(mean.y) < 1e-12);
+        CHECK_NEAR(mean.x, 0.0, 1e-12);  // symmetric: the samples' mean is the pixel centre
+        CHECK_NEAR(mean.y, 0.0, 1e-12);
     }
     CHECK(analysis::jitterGrid(1).front() == dvec2(0.0));
 }

@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 #include <random>
 
@@ -21,8 +23,8 @@ TEST_CASE("brdf::labFromXyz") {
     SUBCASE("the white is L* 100, a* = b* = 0; black L* 0") {
         const dvec3 w = brdf::labFromXyz({0.9505, 1.0, 1.089}, {0.9505, 1.0, 1.089});
         CHECK(w.x == doctest::Approx(100.0));
-        CHECK(std::abs(w.y) < 1e-12);
-        CHECK(std::abs(w.z) < 1e-12);
+        CHECK_NEAR(w.y, 0.0, 1e-12);
+        CHECK_NEAR(w.z, 0.0, 1e-12);
         CHECK(brdf::labFromXyz(dvec3(0.0), {0.9505, 1.0, 1.089}).x == doctest::Approx(0.0));
     }
 }

@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <random>
 
 using namespace hilite;
@@ -71,7 +73,7 @@ TEST_CASE("brdf::evaluate the anisotropic path with ax = ay is the isotropic BRD
             for (int i = 0; i < 500; ++i) {
                 const dvec3 wi = randomDirection(rng), wo = nearMirror(rng, wi);
                 const double a = brdf::evaluate(iso, wi, wo).x, b = brdf::evaluate(aniso, wi, wo).x;
-                CHECK(std::abs(a - b) <= 1e-10 * a);
+                CHECK_NEAR(a, b, 1e-10 * a);
             }
         }
 }

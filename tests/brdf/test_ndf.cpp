@@ -9,6 +9,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -52,10 +54,10 @@ TEST_CASE("brdf::D_* normalization: int D (n.h) dw = 1 within 1e-3") {
     auto check = [&](const brdf::Params& p) {
         const double I = normalization(p);
         CAPTURE(p);
-        CHECK(std::abs(I - 1.0) < 1e-3);
+        CHECK_NEAR(I, 1.0, 1e-3);
         worst[label(p)] = std::max(worst[label(p)], std::abs(I - 1.0));
         // The library's own integral (graded Gauss-Legendre, used by `hilite brdf normalization`) agrees.
-        CHECK(std::abs(brdf::ndfIntegral(p) - I) < 1e-6);
+        CHECK_NEAR(brdf::ndfIntegral(p), I, 1e-6);
     };
     SUBCASE("exponents 1 .. 1e4 (blinn)") {
         for (double n : kExponents) {
@@ -88,7 +90,7 @@ TEST_CASE("brdf::gaussianNormalization") {
         for (double m : {0.005, 0.01, 0.02}) {
             const double asymptotic = 1.0 / (kPi * m * m * (1.0 - 2.0 * m * m / 3.0));
             CAPTURE(m);
-            CHECK(std::abs(brdf::gaussianNormalization(m) / asymptotic - 1.0) < 1e-6);
+            CHECK_NEAR(brdf::gaussianNormalization(m) / asymptotic, 1.0, 1e-6);
         }
     }
     SUBCASE("is cached: the same value on every call") {
@@ -110,7 +112,7 @@ TEST_CASE("brdf::D_*Aniso with ax = ay equal the isotropic NDFs, for any tangent
                 for (double phi = 0.0; phi < 360.0; phi += 41.0) {
                     const dvec3 h = sphericalDirectionDeg(t, phi);
                     const double a = brdf::distribution(iso, h), b = brdf::distribution(aniso, h);
-                    CHECK(std::abs(a - b) <= 1e-12 * a);
+                    CHECK_NEAR(a, b, 1e-12 * a);
                 }
         }
 }

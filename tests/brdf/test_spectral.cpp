@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <algorithm>
 
 using namespace hilite;
@@ -105,12 +107,12 @@ TEST_CASE("brdf::F_Spectral F0 agrees with the published linear F0 of copper and
     // (1.000, 0.782, 0.344), linear sRGB, gold's red clipped at 1 there.
     const dvec3 cu = brdf::F_Spectral(1.0, *brdf::loadSpectrum(HILITE_DATA_DIR, "copper", brdf::kFullStepNm));
     const dvec3 au = brdf::F_Spectral(1.0, *brdf::loadSpectrum(HILITE_DATA_DIR, "gold", brdf::kFullStepNm));
-    CHECK(std::abs(cu.x - 0.955) < 2e-3);
-    CHECK(std::abs(cu.y - 0.638) < 2e-3);
-    CHECK(std::abs(cu.z - 0.538) < 2e-3);
+    CHECK_NEAR(cu.x, 0.955, 2e-3);
+    CHECK_NEAR(cu.y, 0.638, 2e-3);
+    CHECK_NEAR(cu.z, 0.538, 2e-3);
     CHECK(std::min(au.x, 1.0) == 1.0);
-    CHECK(std::abs(au.y - 0.782) < 2e-3);
-    CHECK(std::abs(au.z - 0.344) < 2e-3);
+    CHECK_NEAR(au.y, 0.782, 2e-3);
+    CHECK_NEAR(au.z, 0.344, 2e-3);
 }
 
 TEST_CASE("brdf::F_SpectralTable within 1e-5 of F_Spectral over cos theta_d in [0, 1]") {

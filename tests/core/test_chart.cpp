@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 #include <initializer_list>
 
@@ -12,9 +14,9 @@ using namespace hilite;
 namespace {
 
 void checkClose(const dvec3& a, const dvec3& b, double eps) {
-    CHECK(std::abs(a.x - b.x) < eps);
-    CHECK(std::abs(a.y - b.y) < eps);
-    CHECK(std::abs(a.z - b.z) < eps);
+    CHECK_NEAR(a.x, b.x, eps);
+    CHECK_NEAR(a.y, b.y, eps);
+    CHECK_NEAR(a.z, b.z, eps);
 }
 
 /// 1 / |d we/du x d we/dv| by central differences: (u,v) area per unit solid angle.
@@ -37,9 +39,9 @@ TEST_CASE("MirrorChart::MirrorChart") {
                 CHECK(glm::length(chart.wr()) == doctest::Approx(1.0));
                 CHECK(glm::length(chart.eu()) == doctest::Approx(1.0));
                 CHECK(glm::length(chart.ev()) == doctest::Approx(1.0));
-                CHECK(std::abs(glm::dot(chart.eu(), chart.wr())) < 1e-15);
-                CHECK(std::abs(glm::dot(chart.ev(), chart.wr())) < 1e-15);
-                CHECK(std::abs(glm::dot(chart.eu(), chart.ev())) < 1e-15);
+                CHECK_NEAR(glm::dot(chart.eu(), chart.wr()), 0.0, 1e-15);
+                CHECK_NEAR(glm::dot(chart.ev(), chart.wr()), 0.0, 1e-15);
+                CHECK_NEAR(glm::dot(chart.eu(), chart.ev()), 0.0, 1e-15);
             }
             SUBCASE("wr is the mirror of wi, +u points towards the normal") {
                 const dvec3 n(0, 0, 1);
@@ -75,15 +77,15 @@ TEST_CASE("MirrorChart::coords") {
                 CAPTURE(u);
                 CAPTURE(v);
                 const dvec2 uv = chart.coords(chart.direction(u, v));
-                CHECK(std::abs(uv.x - u) < 1e-12);
-                CHECK(std::abs(uv.y - v) < 1e-12);
+                CHECK_NEAR(uv.x, u, 1e-12);
+                CHECK_NEAR(uv.y, v, 1e-12);
             }
         }
     }
     SUBCASE("mirror direction maps to the origin") {
         const dvec2 uv = chart.coords(chart.wr());
-        CHECK(std::abs(uv.x) < 1e-15);
-        CHECK(std::abs(uv.y) < 1e-15);
+        CHECK_NEAR(uv.x, 0.0, 1e-15);
+        CHECK_NEAR(uv.y, 0.0, 1e-15);
     }
 }
 

@@ -11,6 +11,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -147,7 +149,7 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
         CAPTURE(inc);
         const render::Scene dir = ggx(0.1, inc);
         const analysis::Shape a = measureShape(dir), b = measureShape(withDisk(dir, 1e-4));
-        CHECK(std::abs(a.aspect - b.aspect) < 1e-3);
+        CHECK_NEAR(a.aspect, b.aspect, 1e-3);
         CHECK(b.flags.empty());
     }
     // GGX 0.02 at 80 deg: the sun's disk (0.266 deg) is comparable with the lobe's minor half-width (0.26 deg):
@@ -159,7 +161,7 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
     MESSAGE("GGX 0.02 at 80: aspect " << dir.aspect << " (directional) -> " << sun.aspect << " (sun), at 16 rings "
                                       << fine.aspect);
     CHECK(sun.aspect - dir.aspect > 0.02);
-    CHECK(std::abs(sun.aspect - fine.aspect) < 1e-3);
+    CHECK_NEAR(sun.aspect, fine.aspect, 1e-3);
     CHECK(sun.flags.empty());
 }
 

@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -119,8 +121,8 @@ TEST_CASE("measurement::measureBumps: glints at large periods, the analytic high
         const auto m = measurement::measureBumps(renderer, tiny, setup);
         const auto a = measurement::measureReference(measurement::analyticScene(tiny), setup.options);
         CAPTURE(inc);
-        CHECK(std::abs(m.shape.aspect - a.shape.aspect) < 0.02);
-        CHECK(std::abs(m.shape.major_deg / a.shape.major_deg - 1) < 0.05);
-        CHECK(std::abs(m.shape.minor_deg / a.shape.minor_deg - 1) < 0.05);
+        CHECK_NEAR(m.shape.aspect, a.shape.aspect, 0.02);
+        CHECK_NEAR(m.shape.major_deg / a.shape.major_deg, 1, 0.05);
+        CHECK_NEAR(m.shape.minor_deg / a.shape.minor_deg, 1, 0.05);
     }
 }

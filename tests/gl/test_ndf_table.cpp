@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 
 using namespace hilite;
@@ -28,7 +30,7 @@ TEST_CASE("measurement::measureGl a table sampled from GGX measures like GGX") {
                        b = measurement::measureGl(renderer, tab, setup);
             CAPTURE(alpha);
             CAPTURE(inc);
-            CHECK(std::abs(a.shape.aspect - b.shape.aspect) < 0.005);
+            CHECK_NEAR(a.shape.aspect, b.shape.aspect, 0.005);
             CHECK(b.shape.major_deg == doctest::Approx(a.shape.major_deg).epsilon(0.005));
             CHECK(b.shape.minor_deg == doctest::Approx(a.shape.minor_deg).epsilon(0.005));
             CHECK(b.shape.flags == a.shape.flags);

@@ -10,6 +10,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 
 using namespace hilite;
@@ -97,11 +99,11 @@ TEST_CASE("measurement::measureGl retroreflection: framed and measured about the
         CHECK(m.shape.flags.empty());
         // A cos^n lobe about wi is round about its axis: the Phong lobe's 2.1331 deg (measurement.md), aspect 1.
         CHECK(ref.shape.major_deg == doctest::Approx(2.1331).epsilon(1e-4));
-        CHECK(std::abs(m.shape.aspect - 1.0) < 2e-3);
+        CHECK_NEAR(m.shape.aspect, 1.0, 2e-3);
         CHECK(m.shape.major_deg == doctest::Approx(ref.shape.major_deg).epsilon(2e-3));
         CHECK(m.shape.minor_deg == doctest::Approx(ref.shape.minor_deg).epsilon(2e-3));
-        CHECK(std::abs(m.shape.centroid_u_deg) < 0.01);  // relative to the peak
-        CHECK(std::abs(m.shape.centroid_v_deg) < 0.01);
+        CHECK_NEAR(m.shape.centroid_u_deg, 0.0, 0.01);  // relative to the peak
+        CHECK_NEAR(m.shape.centroid_v_deg, 0.0, 0.01);
         CHECK(angleDeg(m.center, s.light.direction()) < 0.05);  // the frame looks back at the light
     }
     SUBCASE("a narrow lobe 0.1 deg above the horizon is a true maximum: framed about it, not about the mirror") {
@@ -114,7 +116,7 @@ TEST_CASE("measurement::measureGl retroreflection: framed and measured about the
         const auto m = measurement::measureGl(renderer, s, setup);
         const auto ref = measurement::measureReference(s, setup.options);
         CHECK_FALSE(m.shape.has(analysis::Flag::NoHighlight));
-        CHECK(std::abs(m.shape.aspect - 1.0) < 2e-3);
+        CHECK_NEAR(m.shape.aspect, 1.0, 2e-3);
         CHECK(m.shape.major_deg == doctest::Approx(ref.shape.major_deg).epsilon(2e-3));
     }
     SUBCASE("about the mirror direction the frame misses it: nothing to measure there") {

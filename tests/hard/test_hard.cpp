@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 #include <deque>
 #include <string>
@@ -60,11 +62,10 @@ void sceneGl(size_t i) {
     const analysis::Shape ref = measurement::measureReference(c.scene, c.setup.options).shape;
     if (comparable(o.measurement.shape) && comparable(ref)) {
         INFO("reference: " << ref);
-        CHECK(std::abs(o.measurement.shape.aspect - ref.aspect) <=
-              (c.aspectTolerance > 0 ? c.aspectTolerance : kAspectTolerance));
+        CHECK_NEAR(o.measurement.shape.aspect, ref.aspect,
+                   (c.aspectTolerance > 0 ? c.aspectTolerance : kAspectTolerance));
         const bool cut = o.measurement.shape.has(analysis::Flag::HorizonCut);
-        CHECK(std::abs(o.measurement.shape.major_deg / ref.major_deg - 1.0) <=
-              (cut ? kMajorToleranceCut : kMajorTolerance));
+        CHECK_NEAR(o.measurement.shape.major_deg / ref.major_deg, 1.0, (cut ? kMajorToleranceCut : kMajorTolerance));
     }
 }
 

@@ -10,6 +10,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 
 using namespace hilite;
@@ -89,8 +91,8 @@ TEST_CASE("measurement::measureCpu agrees with measureGl") {
         CAPTURE(s);
         const auto gl = measurement::measureGl(*test::glEnv().renderer, s, sized(256));
         const auto cpu = measurement::measureCpu(s, sized(256));
-        CHECK(std::abs(gl.shape.aspect - cpu.shape.aspect) < 0.005);
-        CHECK(std::abs(gl.shape.aspect - cpu.shape.aspect) < 1e-4);  // what it actually is: float vs double pixels
+        CHECK_NEAR(gl.shape.aspect, cpu.shape.aspect, 0.005);
+        CHECK_NEAR(gl.shape.aspect, cpu.shape.aspect, 1e-4);  // what it actually is: float vs double pixels
         CHECK(gl.shape.flags == cpu.shape.flags);
     }
 }

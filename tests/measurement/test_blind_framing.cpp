@@ -9,6 +9,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 #include <string>
 
@@ -59,9 +61,9 @@ TEST_CASE("measurement::measureBlind each shipped .brdf file measures as its bui
             CHECK(b.framing == "blind");
             CHECK(b.framingNote.empty());
             CHECK(b.shape.flags.empty());
-            CHECK(std::abs(b.shape.aspect - a.shape.aspect) < 0.002);
-            CHECK(std::abs(b.shape.major_deg / a.shape.major_deg - 1.0) < 0.005);
-            CHECK(std::abs(b.shape.minor_deg / a.shape.minor_deg - 1.0) < 0.005);
+            CHECK_NEAR(b.shape.aspect, a.shape.aspect, 0.002);
+            CHECK_NEAR(b.shape.major_deg / a.shape.major_deg, 1.0, 0.005);
+            CHECK_NEAR(b.shape.minor_deg / a.shape.minor_deg, 1.0, 0.005);
             REQUIRE(b.halfResolution);
             CHECK(b.halfWidth == 256);
         }
@@ -85,9 +87,9 @@ TEST_CASE("measurement::measureBlind agrees with twin-seeded framing on built-in
         CHECK(blind.framingNote.empty());
         CHECK_FALSE(blind.shape.has(analysis::Flag::Clipped));
         CHECK(blind.shape.flags == twin.shape.flags);
-        CHECK(std::abs(blind.shape.aspect - twin.shape.aspect) < 0.002);
-        CHECK(std::abs(blind.shape.major_deg / twin.shape.major_deg - 1.0) < 0.005);
-        CHECK(std::abs(blind.shape.minor_deg / twin.shape.minor_deg - 1.0) < 0.005);
+        CHECK_NEAR(blind.shape.aspect, twin.shape.aspect, 0.002);
+        CHECK_NEAR(blind.shape.major_deg / twin.shape.major_deg, 1.0, 0.005);
+        CHECK_NEAR(blind.shape.minor_deg / twin.shape.minor_deg, 1.0, 0.005);
         CHECK(blind.renders <= measurement::MeasureSetup{}.maxBlindRenders + 2);
     }
 }
@@ -104,11 +106,9 @@ TEST_CASE("measurement::measureBlind error estimate from resolution convergence 
             const auto m = measurement::measureBlind(renderer(), s, setup);
             REQUIRE(m.halfResolution);
             const analysis::Shape& h = *m.halfResolution;
-            CHECK(std::abs(m.shape.aspect - ref.shape.aspect) <= std::abs(m.shape.aspect - h.aspect) + 1e-6);
-            CHECK(std::abs(m.shape.major_deg - ref.shape.major_deg) <=
-                  std::abs(m.shape.major_deg - h.major_deg) + 1e-6);
-            CHECK(std::abs(m.shape.minor_deg - ref.shape.minor_deg) <=
-                  std::abs(m.shape.minor_deg - h.minor_deg) + 1e-6);
+            CHECK_NEAR(m.shape.aspect, ref.shape.aspect, std::abs(m.shape.aspect - h.aspect) + 1e-6);
+            CHECK_NEAR(m.shape.major_deg, ref.shape.major_deg, std::abs(m.shape.major_deg - h.major_deg) + 1e-6);
+            CHECK_NEAR(m.shape.minor_deg, ref.shape.minor_deg, std::abs(m.shape.minor_deg - h.minor_deg) + 1e-6);
         }
     }
 }

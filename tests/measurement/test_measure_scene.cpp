@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 
 using namespace hilite;
@@ -25,7 +27,7 @@ TEST_CASE("measurement::measureGl Phong reflection lobe stays circular") {
     for (double inc = 0; inc <= 80; inc += 10) {
         CAPTURE(inc);
         const auto m = glMeasure(makeScene(brdf::Model::Phong, 1000, inc));
-        CHECK(std::abs(m.shape.aspect - 1.0) < 0.005);
+        CHECK_NEAR(m.shape.aspect, 1.0, 0.005);
         CHECK(m.shape.flags.empty());
         CHECK(m.renders <= 5);
     }
@@ -40,9 +42,9 @@ TEST_CASE("measurement::measureGl GGX NDF lobe matches the reference table") {
                         Row{60, 0.50173, 7.4059, 3.7158}, Row{75, 0.26404, 7.3636, 1.9443}}) {
         CAPTURE(r.inc);
         const auto m = glMeasure(makeScene(brdf::Model::GGX, 0.1, r.inc));
-        CHECK(std::abs(m.shape.aspect - r.aspect) < 0.005);
-        CHECK(std::abs(m.shape.major_deg / r.major - 1.0) < 0.01);
-        CHECK(std::abs(m.shape.minor_deg / r.minor - 1.0) < 0.01);
+        CHECK_NEAR(m.shape.aspect, r.aspect, 0.005);
+        CHECK_NEAR(m.shape.major_deg / r.major, 1.0, 0.01);
+        CHECK_NEAR(m.shape.minor_deg / r.minor, 1.0, 0.01);
     }
 }
 
@@ -56,7 +58,7 @@ TEST_CASE("measurement::measureGl narrow microfacet lobes narrow as cos theta_i"
             CAPTURE(parameter);
             const auto m = glMeasure(makeScene(model, param, inc));
             CHECK(m.shape.major_deg <= 3.0);
-            CHECK(std::abs(m.shape.aspect - std::cos(deg2rad(inc))) < 0.02);
+            CHECK_NEAR(m.shape.aspect, std::cos(deg2rad(inc)), 0.02);
         }
     }
 }
@@ -90,8 +92,8 @@ TEST_CASE("measurement::measureGl agrees with the CPU double reference") {
                 const std::string modelName = brdf::toString(model);
                 CAPTURE(modelName);
                 CAPTURE(inc);
-                CHECK(std::abs(m.shape.aspect - r.shape.aspect) < 0.005);
-                CHECK(std::abs(m.shape.major_deg / r.shape.major_deg - 1.0) < 0.01);
+                CHECK_NEAR(m.shape.aspect, r.shape.aspect, 0.005);
+                CHECK_NEAR(m.shape.major_deg / r.shape.major_deg, 1.0, 0.01);
             }
         }
     }
@@ -148,8 +150,8 @@ TEST_CASE("measurement::measureGl point light: the eye's view, against the refer
     s.eyeDistance = 3;
     const auto m = glMeasure(s);
     const auto r = measurement::measureReference(s, {});
-    CHECK(std::abs(m.shape.aspect - r.shape.aspect) < 0.005);
-    CHECK(std::abs(m.shape.major_deg / r.shape.major_deg - 1.0) < 0.01);
+    CHECK_NEAR(m.shape.aspect, r.shape.aspect, 0.005);
+    CHECK_NEAR(m.shape.major_deg / r.shape.major_deg, 1.0, 0.01);
     // Light and eye at the same distance: both directions turn as the eye's ray moves along the plane,
     // so the half vector moves half as fast and the highlight spans about half the angle.
     const auto directional = glMeasure(makeScene(brdf::Model::GGX, 0.1, 45));
@@ -158,9 +160,9 @@ TEST_CASE("measurement::measureGl point light: the eye's view, against the refer
     s.light.distance = 1e6;
     s.light.intensity = 1e12;
     const auto far = glMeasure(s);
-    CHECK(std::abs(far.shape.aspect - directional.shape.aspect) < 1e-3);
-    CHECK(std::abs(far.shape.major_deg / directional.shape.major_deg - 1.0) < 1e-3);
-    CHECK(std::abs(far.shape.peak / directional.shape.peak - 1.0) < 1e-3);
+    CHECK_NEAR(far.shape.aspect, directional.shape.aspect, 1e-3);
+    CHECK_NEAR(far.shape.major_deg / directional.shape.major_deg, 1.0, 1e-3);
+    CHECK_NEAR(far.shape.peak / directional.shape.peak, 1.0, 1e-3);
 }
 
 TEST_CASE("measurement::measureGl automatic framing fits non-square frames") {
@@ -174,6 +176,6 @@ TEST_CASE("measurement::measureGl automatic framing fits non-square frames") {
         const int width = w;
         CAPTURE(width);
         CHECK_FALSE(m.shape.has(analysis::Flag::Clipped));
-        CHECK(std::abs(m.shape.aspect - measurement::measureReference(s, {}).shape.aspect) < 0.005);
+        CHECK_NEAR(m.shape.aspect, measurement::measureReference(s, {}).shape.aspect, 0.005);
     }
 }

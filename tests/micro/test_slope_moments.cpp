@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 
 using namespace hilite;
@@ -57,8 +59,8 @@ TEST_CASE("micro::makeSlopeMoments") {
     }
     SUBCASE("the top level is the whole tile: mean slope 0, mean |s|^2 = m^2 (the field's normalization)") {
         const micro::Moments t = m.at(m.levels - 1, 0.3, 0.7);
-        CHECK(std::abs(t.mean.x) < 1e-6);
-        CHECK(std::abs(t.mean.y) < 1e-6);
+        CHECK_NEAR(t.mean.x, 0.0, 1e-6);
+        CHECK_NEAR(t.mean.y, 0.0, 1e-6);
         CHECK(t.xx + t.yy == doctest::Approx(0.01).epsilon(1e-5));
         CHECK(t.xx / t.yy == doctest::Approx(1.0).epsilon(0.15));  // 64 bumps: the realisation's anisotropy
     }
@@ -78,7 +80,7 @@ TEST_CASE("micro::makeSlopeMoments") {
         }
         // Trilinear probes are a slightly blurred box (measured: mean 0.0058 against 0.0058, E|s|^2 to 4e-4).
         const double var = b.covariance().x + b.covariance().y;
-        CHECK(std::abs(strip.mean.x - b.mean.x) < 0.05 * std::sqrt(var));
-        CHECK(std::abs(strip.xx + strip.yy - b.xx - b.yy) < 0.01 * (b.xx + b.yy));
+        CHECK_NEAR(strip.mean.x, b.mean.x, 0.05 * std::sqrt(var));
+        CHECK_NEAR(strip.xx + strip.yy, b.xx + b.yy, 0.01 * (b.xx + b.yy));
     }
 }
