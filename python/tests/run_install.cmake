@@ -1,11 +1,8 @@
 # ctest python_install: `cmake --install` puts the package where Debian's python3 imports it from the prefix,
 # and the installed module measures (shaders and data from the installed share/hilite).
 #   cmake -DHILITE_BUILD_DIR=... -DWORK_DIR=... -DPYTHON=... -DPYTHON_DIR=lib/python3.11/dist-packages -P run_install.cmake
-foreach(v HILITE_BUILD_DIR WORK_DIR PYTHON PYTHON_DIR)
-  if(NOT DEFINED ${v})
-    message(FATAL_ERROR "run_install.cmake: -D${v}=... is required")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/script_support.cmake)
+hilite_require(run_install.cmake HILITE_BUILD_DIR WORK_DIR PYTHON PYTHON_DIR)
 set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${HILITE_BUILD_DIR} --prefix ${prefix}

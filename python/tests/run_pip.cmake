@@ -3,11 +3,8 @@
 #   cmake -DSOURCE_DIR=... -DHILITE_BUILD_DIR=... -DWORK_DIR=... -DPYTHON=/usr/bin/python3 -P run_pip.cmake
 # HILITE_BUILD_DIR: setup.py builds in the suite's build tree (already built: the package step only); a user's
 # `pip install .` configures and builds build/pip-cmake from scratch. Exit 77 (skipped) without pip or venv.
-foreach(v SOURCE_DIR HILITE_BUILD_DIR WORK_DIR PYTHON)
-  if(NOT DEFINED ${v})
-    message(FATAL_ERROR "run_pip.cmake: -D${v}=... is required")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/script_support.cmake)
+hilite_require(run_pip.cmake SOURCE_DIR HILITE_BUILD_DIR WORK_DIR PYTHON)
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 foreach(module pip venv ensurepip)
@@ -17,14 +14,6 @@ foreach(module pip venv ensurepip)
     cmake_language(EXIT 77)
   endif()
 endforeach()
-function(run)
-  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    list(JOIN ARGN " " cmd)
-    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}\n${err}")
-  endif()
-  set(run_out "${out}" PARENT_SCOPE)
-endfunction()
 
 set(venv ${WORK_DIR}/V)
 run(${PYTHON} -m venv --system-site-packages ${venv})

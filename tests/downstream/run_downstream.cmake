@@ -7,11 +7,8 @@
 # Nothing is told where hilite is at run time: no HILITE_SHARE_DIR, and no hilite executable in the prefix
 # (removed after the install) or on PATH (the system's folders only).
 cmake_minimum_required(VERSION 3.20)
-foreach(v HILITE_BUILD_DIR WORK_DIR CXX GENERATOR)
-  if(NOT DEFINED ${v})
-    message(FATAL_ERROR "run_downstream.cmake: -D${v}=... is required")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/script_support.cmake)
+hilite_require(run_downstream.cmake HILITE_BUILD_DIR WORK_DIR CXX GENERATOR)
 set(src ${CMAKE_CURRENT_LIST_DIR})
 set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -23,13 +20,6 @@ macro(step what)
   math(EXPR _dt "${_now} - ${t0}")
   message(STATUS "[${_dt} s] ${what}")
 endmacro()
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    list(JOIN ARGN " " cmd)
-    message(FATAL_ERROR "failed (${rc}): ${cmd}")
-  endif()
-endfunction()
 
 # -- 1. Install, then check what the tree holds.
 step("cmake --install ${HILITE_BUILD_DIR} --prefix ${prefix}")
