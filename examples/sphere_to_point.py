@@ -5,7 +5,7 @@ between a sphere light of radius R and the point light of the same intensity and
 
     PYTHONPATH=build/python /usr/bin/python3 examples/sphere_to_point.py docs/sphere_to_point.png
 
-tests/gl/test_area_lights.cpp asserts the same order (1.9 to 2.1) from the same renders in C++.
+tests/render/test_area_lights_gl.cpp asserts the same order (1.9 to 2.1) from the same renders in C++.
 """
 import sys
 

@@ -1,8 +1,8 @@
 #include "gl/context.hpp"
 
 #include "brdf/spectral.hpp"
-#include "gl_fixture.hpp"
 #include "hilite/core/error.hpp"
+#include "support/gl_fixture.hpp"
 
 #include "render/renderer.hpp"
 #include "render/shader_source.hpp"

@@ -4,7 +4,7 @@
 
 #include "hard/hard_cases.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 

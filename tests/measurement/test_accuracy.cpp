@@ -5,7 +5,7 @@
 #include "measurement/tolerance.hpp"
 #include "render/cpu_view.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 #include "support/scenes.hpp"
 
 #include <doctest/doctest.h>

@@ -4,7 +4,7 @@
 
 #include "measurement/blind_framing.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 #include "support/scenes.hpp"
 
 #include <doctest/doctest.h>

@@ -3,7 +3,7 @@
 
 #include "hilite/measurement/measure_scene.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 #include "support/scenes.hpp"
 
 #include <doctest/doctest.h>

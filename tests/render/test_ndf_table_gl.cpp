@@ -3,7 +3,7 @@
 #include "brdf/ndf_tables.hpp"
 #include "hilite/measurement/measure_scene.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 

@@ -3,8 +3,8 @@
 // alone; and one texture per table however many draws.
 
 #include "brdf/merl.hpp"
-#include "gl_fixture.hpp"
 #include "render/shader_source.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 

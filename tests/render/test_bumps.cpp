@@ -4,7 +4,7 @@
 #include "measurement/measure_bumps.hpp"
 #include "render/bumps.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 

@@ -7,7 +7,7 @@
 #include "measurement/diagnose.hpp"
 #include "render/cpu_view.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
 #include "render/renderer.hpp"
 
-#include "gl_fixture.hpp"
 #include "hilite/core/error.hpp"
 #include "render/shader_source.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 #include <glad/gl.h>

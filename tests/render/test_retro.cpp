@@ -5,7 +5,7 @@
 #include "hilite/measurement/measure_scene.hpp"
 #include "measurement/peak_frame.hpp"
 
-#include "gl/gl_fixture.hpp"
+#include "support/gl_fixture.hpp"
 #include "support/scenes.hpp"
 
 #include <doctest/doctest.h>

@@ -3,8 +3,8 @@
 
 #include "render/renderer.hpp"
 
-#include "gl_fixture.hpp"
 #include "hilite/core/error.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 

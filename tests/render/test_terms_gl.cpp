@@ -5,9 +5,9 @@
 #include "brdf/energy.hpp"
 #include "brdf/ndf_tables.hpp"
 #include "brdf/spectral.hpp"
-#include "gl_fixture.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "render/shader_source.hpp"
+#include "support/gl_fixture.hpp"
 
 #include <doctest/doctest.h>
 
@@ -109,8 +109,8 @@ std::vector<TermCase> termCases() {
         {"Fd_Lambert + D_GGX", withDiffuse(base(Model::GGX, Geometry::Smith), Diffuse::Lambert)},
         {"Fd_OrenNayar", withDiffuse(base(Model::None), Diffuse::OrenNayar)},
         {"Fd_OrenNayar + Phong_Normalized", withDiffuse(base(Model::Phong), Diffuse::OrenNayar)},
-        {"Retro_Normalized", base(Model::Retro)},        // its framing: tests/gl/test_retro.cpp
-        {"D_Tabulated", tabulated(Geometry::Implicit)},  // A GGX table (tests/gl/test_ndf_table.cpp)
+        {"Retro_Normalized", base(Model::Retro)},        // its framing: tests/render/test_retro.cpp
+        {"D_Tabulated", tabulated(Geometry::Implicit)},  // A GGX table (tests/render/test_ndf_table_gl.cpp)
         {"D_Tabulated + Lambda_Tabulated + F_Schlick",
          withFresnel(tabulated(Geometry::Smith), Fresnel::Schlick, dvec3(1.5))},
         {"MS_KullaConty (GGX, conductor)",
