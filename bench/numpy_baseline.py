@@ -2,7 +2,7 @@
 measurement, written the way a careful numpy user would, as the baseline bench_python.py times hilite against.
 
 Scene (fixed; bench_python.py measures hilite on the same one): a distant light at theta_i in the x-z
-plane, GGX alpha 0.1, height-correlated Smith G2 (what --geometry smith is, src/brdf/params.hpp), Schlick
+plane, GGX alpha 0.1, height-correlated Smith G2 (what --geometry smith is, include/hilite/brdf/params.hpp), Schlick
 F0 0.04 (grey, so the luminance is the value), irradiance 1. The lobe is L(we) = f(wi, we) E cos(theta_i).
 
 The work per angle, as ../../shared/notes/measurement.md defines the measurement and

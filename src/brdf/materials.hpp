@@ -19,7 +19,7 @@ struct Material {
 };
 
 /// The presets, in the order the CLI lists them. copper and gold are spectral (brdf/spectral.hpp); their
-/// eta, k and f0 come from the spectral data (see brdfParams in src/cli/options.cpp).
+/// eta, k and f0 come from the spectral data (scene/resolve.cpp resolveFresnel).
 const std::vector<Material>& materials();
 /// The preset of that name, or nullptr.
 const Material* findMaterial(const std::string& name);

@@ -26,7 +26,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The row flags that leave no shape to compare (measure/highlight.hpp).
+/// The row flags that leave no shape to compare (analysis/highlight.hpp).
 const char* const kUnusable[] = {"no_highlight", "mirror", "unbounded_at_horizon", "effectively_mirror"};
 
 /// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0.

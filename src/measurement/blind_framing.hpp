@@ -6,7 +6,7 @@
 // twin the search starts wide (160 deg, centred on the mirror direction) and, while a coarse render shows
 // nothing at all (peak 0), zooms 8x about the mirror direction, where reflection and microfacet lobes
 // peak, down to 1e-4 deg; it gives up there and says so (framingNote). Once something shows, it re-aims
-// and zooms on the region exactly as the built-in search does (experiments/framing.hpp).
+// and zooms on the region exactly as the built-in search does (measurement/framing.hpp).
 // What it can miss: a lobe narrower than a coarse pixel away from the mirror direction (the zoom never
 // passes over it), and a spike narrower than a coarse pixel on top of a wider lobe (the region of the
 // wider lobe is framed; the final render shows the spike only if it resolves it).

@@ -20,7 +20,7 @@ void addMicroFields(nlohmann::json& row, const render::Scene& s, const Measureme
                     int height);
 
 /// With --prefilter-check, where supersampling runs (the centre pixel needs <= 64 patches per axis): the
-/// moments prefilter and the next seed rendered in the same frame (experiments/prefilter_check.hpp):
+/// moments prefilter and the next seed rendered in the same frame (measurement/prefilter_check.hpp):
 /// prefilter_aspect, _major_over_analytic, _minor_over_analytic, prefilter_block_error, supersample_block_noise,
 /// prefilter_error, next_seed_aspect, _major_over_analytic, _minor_over_analytic. Nothing otherwise.
 void addPrefilterFields(nlohmann::json& row, render::Renderer& renderer, const render::Scene& s,

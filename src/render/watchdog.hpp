@@ -4,7 +4,7 @@
 // fragment shader runs on llvmpipe's own threads). So the watchdog thread ends the process: when a limit
 // armed with arm() passes before disarm(), it writes its message to stderr and calls _exit(code). Files
 // already written stay whole (results are appended row by row, images written after their render).
-// The CLI first runs a probe render in a child process (cli/shader_probe.cpp), which catches most slow
+// The CLI first runs a probe render in a child process (measurement/shader_probe.cpp), which catches most slow
 // shaders with a clean error; this is the backstop for a shader slow only in directions the probe missed.
 
 #include <chrono>

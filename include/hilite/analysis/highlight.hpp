@@ -21,7 +21,7 @@ enum class Flag {
     NoHighlight,    ///< peak is 0 (or nothing visible): the shape fields are left 0
     CoversFrame,    ///< every visible pixel is in the region: the frame shows no outside
     Mirror,         ///< a perfect mirror (roughness 0): the lobe is a delta with no finite shape; fields left 0
-    /// the lobe's half-width is below what float32 directions resolve (experiments/diagnose.hpp): the GL
+    /// the lobe's half-width is below what float32 directions resolve (measurement/diagnose.hpp): the GL
     /// numbers are reported but quantization-limited; the double reference still measures it
     EffectivelyMirror,
     /// the lobe grows without bound towards the horizon (G = 1: f ~ 1 / cos(theta_o)), so it has no peak and

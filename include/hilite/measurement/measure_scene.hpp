@@ -68,7 +68,7 @@ std::array<double, 4> twinRadii(const render::Scene& scene, double threshold);
 double twinHalfWidth(const render::Scene& scene, double threshold);
 
 /// Measures the highlight in GL with fixed or automatic framing. A .brdf scene has no twin to seed the
-/// framing: it is measured by measureBlind (experiments/blind_framing.hpp).
+/// framing: it is measured by measureBlind (measurement/blind_framing.hpp).
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);
 /// The same measurement with every render made by the CPU double twin (render/cpu_view.hpp).
 Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup);

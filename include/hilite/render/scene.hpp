@@ -43,7 +43,7 @@ struct Light {
     /// the automatic choice accepts (set from --tolerance when one is given).
     double ruleTarget = 1e-3;
     /// The measurement chart's centre when it is not the mirror direction (a highlight framed about a peak far
-    /// from it, e.g. retroreflection: experiments/peak_frame.hpp). Unset: the mirror direction.
+    /// from it, e.g. retroreflection: measurement/peak_frame.hpp). Unset: the mirror direction.
     std::optional<dvec3> chartCenter;
     dvec3 direction() const { return sphericalDirectionDeg(incidenceDeg, azimuthDeg); }
     dvec3 position() const { return distance * direction(); }

@@ -24,7 +24,7 @@ struct MeasureSetup {
     /// the last aiming render, plus a margin (the frame, its pixels and the numbers stay those of the
     /// whole frame). If the region reaches the crop's edge the whole frame is rendered again.
     bool crop = true;
-    int supersample = 1;  ///< n: the final frame is rendered n x n times, jittered (measure/supersample.hpp)
+    int supersample = 1;  ///< n: the final frame is rendered n x n times, jittered (analysis/supersample.hpp)
     bool cpu = false;     ///< measure(): the double twin renders the view on the CPU instead of GL
     int threads = 0;      ///< CPU path: threads (0: every core)
 };
