@@ -51,7 +51,7 @@ const std::vector<SceneCase>& sceneCases();
 
 /// The stated GL-vs-twin tolerance for a lobe of minor half-width r (rad): max(1e-4, 16 * 2^-24 / r), and
 /// none (infinite) below measurement::kEffectivelyMirrorHalfWidth, where GL says effectively_mirror.
-/// The shader knows a pixel's direction only to about a float step (2^-24 rad, experiments/diagnose.hpp),
+/// The shader knows a pixel's direction only to about a float step (2^-24 rad, measurement/diagnose.hpp),
 /// and a lobe's log changes by a few units per r radians, so a pixel's relative error grows as step / r:
 /// measured 1-6.5 step / r over the rows (largest: anisotropic Beckmann, steepest at the 1e-3-of-peak
 /// floor of the comparison; docs/hard_cases.md); 16 leaves a factor 2.4. 1e-4 is the floor of wide lobes.
