@@ -272,10 +272,10 @@ scene::Values sessionValues(const char* incidence) {
 void BM_SessionMeasure(benchmark::State& state) {
     const scene::Values values = sessionValues("60");
     measurement::Session session;
-    nlohmann::json row = session.measureOne(scene::resolve(values));  // warm-up: context, compile, allocate
+    measurement::Result row = session.measureOne(scene::resolve(values));  // warm-up: context, compile, allocate
     for (auto _ : state) row = session.measureOne(scene::resolve(values));
-    state.counters["renders"] = row["renders"].get<double>();  // 60 deg: two parts (the horizon strip), a view each
-    state.counters["components"] = row["components"].get<double>();
+    state.counters["renders"] = row.measurement.renders;  // 60 deg: two parts (the horizon strip), a view each
+    state.counters["components"] = row.shape().components;
 }
 BENCHMARK(BM_SessionMeasure)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -14,9 +14,12 @@
 //                                    angles), or an InputError naming the parameter and the allowed values
 //   hilite/scene/scene_file.hpp      scene files (TOML) read into Values
 //   hilite/measurement/session.hpp   hilite::measurement::Session: one GL context reused; measure(resolved) -> one
-//                                    row per angle (every applicable parameter as rendered, every field)
-//   hilite/measurement/measure_scene.hpp  the typed result: Measurement (.shape.aspect, ...), measureReference()
-//   hilite/measurement/row.hpp       the row of a Measurement; measurementColumns()
+//                                    Result per angle
+//   hilite/measurement/result.hpp    the typed Result (the scene as measured, .shape() with its flags, the extras
+//                                    the scene asks for) and toJson(result): its row (every applicable parameter
+//                                    as rendered, every field), what `hilite measure --json` prints
+//   hilite/measurement/measure_scene.hpp  Measurement (.shape.aspect, ...), measureReference()
+//   hilite/measurement/row.hpp       measureRow(renderer, resolved) -> Result; measurementColumns()
 //   hilite/render/scene.hpp          the scene (hilite/brdf/params.hpp: the BRDF's parameters)
 //   hilite/brdf/terms.hpp, hilite/brdf/evaluate.hpp   the BRDF's terms and the whole BRDF in double
 //   hilite/experiments/run.hpp       runExperiment(RunOptions) and mergeShards(): what `hilite run` / `merge` do
@@ -29,8 +32,9 @@
 //   values.set("roughness", "0.1");
 //   values.set("incidence", "60");
 //   hilite::measurement::Session session;
-//   const nlohmann::json row = session.measureOne(hilite::scene::resolve(values));
-//   // row["aspect"] ~ 0.5017, row["roughness"] == 0.1, row["flags"] == []
+//   const hilite::measurement::Result result = session.measureOne(hilite::scene::resolve(values));
+//   // result.shape().aspect ~ 0.5017, result.shape().flags.empty()
+//   const nlohmann::json row = hilite::measurement::toJson(result);  // row["roughness"] == 0.1, row["flags"] == []
 //
 // Threading: a Session (its GL context) belongs to one thread at a time; use one per thread.
 // 1.x: the headers under include/hilite/ are the API; a minor version adds to it, a major one may change it.
@@ -46,6 +50,7 @@
 #include "hilite/experiments/fit.hpp"
 #include "hilite/experiments/run.hpp"
 #include "hilite/measurement/measure_scene.hpp"
+#include "hilite/measurement/result.hpp"
 #include "hilite/measurement/row.hpp"
 #include "hilite/measurement/session.hpp"
 #include "hilite/render/area_light.hpp"

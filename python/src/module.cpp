@@ -68,7 +68,7 @@ py::list measureScenes(const std::vector<Items>& scenes) {
                 scene::Resolved one = r;
                 for (double angle : r.angles) {
                     one.scene.light.incidenceDeg = angle;
-                    nlohmann::json j = s.measureOne(one);
+                    nlohmann::json j = measurement::toJson(s.measureOne(one));
                     experiments::nameNonFinite(j);  // as `hilite measure --json` writes it
                     rows.push_back(std::move(j));
                 }

@@ -93,7 +93,7 @@ int runMeasure(const MeasureFlags& f) {
     if (!f.json) printTableHeader();
     for (double angle : r.angles) {
         r.scene.light.incidenceDeg = angle;
-        nlohmann::json j = session.measureOne(r);
+        nlohmann::json j = measurement::toJson(session.measureOne(r));
         experiments::nameNonFinite(j);
         if (f.json) std::cout << j.dump() << "\n" << std::flush;
         else printTableRow(j);

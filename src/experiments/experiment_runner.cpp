@@ -156,7 +156,7 @@ nlohmann::json ExperimentRunner::measure(const Configuration& c) {
     std::vector<double> times;
     for (int i = 0; i < repeats; ++i) {
         const auto t0 = std::chrono::steady_clock::now();
-        measured = measurement::measureRow(gl, r);
+        measured = measurement::toJson(measurement::measureRow(gl, r));
         const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         // --tolerance times itself without its one-off warm-up measurement (startup_ms): take its word.
         times.push_back(measured.contains("time_ms") ? measured["time_ms"].get<double>() : wall);

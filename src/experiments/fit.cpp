@@ -149,7 +149,8 @@ std::vector<FitSample> measureSweep(measurement::Session& session, const std::ve
     if (!oneFrame(scenes.front())) {
         for (size_t j = 0; j < nt; ++j) {
             const auto rows = session.measure(scenes[j]);
-            for (size_t i = 0; i < rows.size(); ++i) out[i * nt + j] = sampleOf(rows[i], r.thresholds[j]);
+            for (size_t i = 0; i < rows.size(); ++i)
+                out[i * nt + j] = sampleOf(measurement::toJson(rows[i]), r.thresholds[j]);
         }
         return out;
     }

@@ -79,8 +79,8 @@ void errorEstimate(json& j, const Measurement& m, int width, int height) {
 /// or more changes it by 3x its error or more; per axis, so that errors along different axes do not cancel, and
 /// both parities, since a contour's error depends on where it crosses the bins (one halving of all three axes
 /// at once gave 0.8x the true error of GGX 0.1 at 20 deg, one parity per axis 0.45x of its minor axis at 10).
-void tableError(json& j, render::Renderer* renderer, const scene::Resolved& r, const MeasureSetup& setup,
-                const analysis::Shape& full) {
+TableError tableError(render::Renderer* renderer, const scene::Resolved& r, const MeasureSetup& setup,
+                      const analysis::Shape& full) {
     double e[4] = {0, 0, 0, 0};
     for (int axis = 0; axis < 3; ++axis) {
         double worst[4] = {0, 0, 0, 0};
@@ -102,17 +102,21 @@ void tableError(json& j, render::Renderer* renderer, const scene::Resolved& r, c
         e[0] = std::max(e[0], a);
         if (full.eccentricity > 0) e[1] = std::max(e[1], full.aspect * e[0] / full.eccentricity);
     }
-    json out;
-    const char* keys[4] = {"aspect", "eccentricity", "major_deg", "minor_deg"};
-    for (int k = 0; k < 4; ++k) out[keys[k]] = std::isfinite(e[k]) ? json(e[k]) : json(nullptr);
-    j["table_error"] = out;
+    return TableError{e[0], e[1], e[2], e[3]};
+}
+
+void tableErrorJson(json& j, const TableError& t) {
+    j["table_error"] = {{"aspect", finite(t.aspect)},
+                        {"eccentricity", finite(t.eccentricity)},
+                        {"major_deg", finite(t.major_deg)},
+                        {"minor_deg", finite(t.minor_deg)}};
     j["table_error_from"] =
         "the same measurement of the table at half its resolution along each axis (even or odd bins interpolated, "
         "the larger): the sum over the axes of |full - half|";
 }
 
 /// The tolerance fields: what was asked, what was chosen, what it is estimated to reach, what it cost.
-void toleranceFields(json& j, const ToleranceResult& r) {
+void toleranceJson(json& j, const ToleranceFields& r) {
     j["error_estimate"] = r.errorEstimate;
     j["predicted_error"] = r.predictedError;
     j["tolerance_met"] = r.met;
@@ -122,16 +126,75 @@ void toleranceFields(json& j, const ToleranceResult& r) {
                      {"framing", r.setup.fovDeg > 0 ? "fixed" : "auto"},
                      {"renderer", r.setup.cpu ? "cpu" : "gl"}};
     j["check"] = {{"size", std::to_string(r.checkSetup.width) + "x" + std::to_string(r.checkSetup.height)},
-                  {"aspect", r.check.shape.aspect}};
+                  {"aspect", r.checkAspect}};
     j["rounds"] = r.rounds;
     j["time_ms"] = r.total_ms;
     j["startup_ms"] = r.startup_ms;
 }
 
+/// log2_bump_period_px, bump_samples_center, the analytic twin's shape and the differences from it, the
+/// realised slope statistics.
+void microJson(json& j, const MicroFields& f, const analysis::Shape& m) {
+    const analysis::Shape& a = f.analytic;
+    j["bump_filter"] = f.filter;
+    j["bump_filter_used"] = f.filterUsed;
+    j["log2_bump_period_px"] = f.log2PeriodPx;
+    j["bump_samples_center"] = f.samplesCenter;
+    j["analytic_aspect"] = a.aspect;
+    j["analytic_major_deg"] = a.major_deg;
+    j["analytic_minor_deg"] = a.minor_deg;
+    j["aspect_minus_analytic"] = m.aspect - a.aspect;
+    j["major_over_analytic"] = a.major_deg > 0 ? finite(m.major_deg / a.major_deg) : json(nullptr);
+    j["minor_over_analytic"] = a.minor_deg > 0 ? finite(m.minor_deg / a.minor_deg) : json(nullptr);
+    j["slope_rms"] = f.slopeRms;
+    j["slope_ks"] = f.slopeKs;
+}
+
+/// prefilter_ and next_seed_ aspect, its difference from the analytic twin's and the axes' ratios to it; the
+/// block comparison.
+void prefilterJson(json& j, const PrefilterFields& p, const MicroFields& f) {
+    const analysis::Shape& a = f.analytic;
+    for (const auto& [prefix, shape] :
+         {std::pair<std::string, const analysis::Shape*>{"prefilter", &p.moments}, {"next_seed", &p.nextSeed}}) {
+        j[prefix + "_aspect"] = finite(shape->aspect);
+        j[prefix + "_aspect_minus_analytic"] = finite(shape->aspect - a.aspect);
+        j[prefix + "_major_over_analytic"] = finite(shape->major_deg / a.major_deg);
+        j[prefix + "_minor_over_analytic"] = finite(shape->minor_deg / a.minor_deg);
+    }
+    j["prefilter_block_error"] = finite(p.blockError);
+    j["supersample_block_noise"] = finite(p.blockNoise);
+    j["prefilter_error"] = finite(p.error);
+    j["prefilter_blocks"] = p.blocks;
+    j["prefilter_unresolved_blocks"] = p.unresolvedBlocks;
+}
+
+/// The result of `m`, measured by `method` at `width` x `height`, with what the scene alone decides.
+Result resultOf(const scene::Resolved& r, const Measurement& m, int width, int height, const std::string& method) {
+    const render::Scene& s = r.scene;
+    Result out;
+    out.resolved = r;
+    out.method = method;
+    out.width = width;
+    out.height = height;
+    out.measurement = m;
+    if (s.light.area())  // what of the light is integrated, and how well the GL rule (and the cpu path's twin) does it
+        out.light = LightFields{s.light.type == render::LightType::Disk
+                                    ? render::capVisibleFraction(render::lightCap(s.light, s.light.position()))
+                                    : 1.0,  // a sphere above the plane is wholly above every point's horizon
+                                method == "reference" ? std::nullopt : std::optional(render::lightRule(s).error)};
+    // a highlight far from the mirror direction is measured about its peak
+    out.framedAbout = framedAbout(s, r.setup.options.threshold, out.peakOffsetDeg);
+    if (s.surface.bumps) out.micro = microFields(s, m, r.setup.options.threshold, width, height);
+    return out;
+}
+
 }  // namespace
 
-json row(const scene::Resolved& r, const Measurement& m, int width, int height, const std::string& method) {
+json toJson(const Result& res) {
+    const scene::Resolved& r = res.resolved;
     const render::Scene& s = r.scene;
+    const Measurement& m = res.measurement;
+    const std::string& method = res.method;
     json j = scene::parameterColumns(r);
     if (s.brdfFile) j["brdf_params"] = brdf_file::valuesText(*s.brdfFile);  // every value, defaults included
     if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable && !s.brdfFile)
@@ -141,55 +204,59 @@ json row(const scene::Resolved& r, const Measurement& m, int width, int height, 
                                          render::toString(s.light.type) + " light)"
                                    : std::string("exitant directions (distant light)");
     j["method"] = method;
-    if (s.light
-            .area()) {  // what of the light is integrated, and how well the GL rule (and the cpu path's twin) does it
-        j["light_visible"] = s.light.type == render::LightType::Disk
-                                 ? render::capVisibleFraction(render::lightCap(s.light, s.light.position()))
-                                 : 1.0;  // a sphere above the plane is wholly above every point's horizon
-        j["light_rule_error"] = method == "reference" ? json(nullptr) : json(render::lightRule(s).error);
+    if (res.light) {
+        j["light_visible"] = res.light->visible;
+        j["light_rule_error"] = res.light->ruleError ? json(*res.light->ruleError) : json(nullptr);
     }
-    double offsetDeg = 0;  // a highlight far from the mirror direction is measured about its peak
-    j["framed_about"] = framedAbout(s, r.setup.options.threshold, offsetDeg);
-    j["peak_offset_deg"] = offsetDeg;
+    j["framed_about"] = res.framedAbout;
+    j["peak_offset_deg"] = res.peakOffsetDeg;
     shapeFields(j, m.shape);
     j["cos_incidence"] = s.light.direction().z;
     j["renders"] = m.renders;
-    j["size"] = method != "reference" ? std::to_string(width) + "x" + std::to_string(height) : "";
+    j["size"] = method != "reference" ? std::to_string(res.width) + "x" + std::to_string(res.height) : "";
     j["fov_deg"] = m.fovDeg;
     j["render_ms"] = m.render_ms;
     j["measure_ms"] = m.measure_ms;
-    if (s.surface.bumps) addMicroFields(j, s, m, r.setup.options.threshold, width, height);
+    if (res.micro) microJson(j, *res.micro, m.shape);
     j["framing"] = m.framing;
     if (!m.framingNote.empty()) j["framing_note"] = m.framingNote;
-    if (m.halfResolution) errorEstimate(j, m, width, height);
+    if (m.halfResolution) errorEstimate(j, m, res.width, res.height);
+    if (res.prefilter && res.micro) prefilterJson(j, *res.prefilter, *res.micro);
+    if (res.tolerance) toleranceJson(j, *res.tolerance);
+    if (res.tableError) tableErrorJson(j, *res.tableError);
+    if (res.gl) {  // what rendered it: a GPU or llvmpipe (the strings GL_RENDERER and GL_VENDOR give)
+        j["gl_backend"] = res.gl->backend;
+        j["gl_renderer"] = res.gl->renderer;
+        j["gl_vendor"] = res.gl->vendor;
+    }
     return j;
 }
 
-json measureRow(render::Renderer* renderer, const scene::Resolved& r) {
+Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
     const render::Scene& scene = r.scene;
     const MeasureSetup& setup = r.setup;
     if (r.reference) {
-        const Measurement m = measureReference(scene, setup.options);
-        json j = row(r, m, setup.width, setup.height, "reference");
-        if (scene.brdf.measured) tableError(j, renderer, r, setup, m.shape);
-        return j;
+        Result res = resultOf(r, measureReference(scene, setup.options), setup.width, setup.height, "reference");
+        if (scene.brdf.measured) res.tableError = tableError(renderer, r, setup, res.measurement.shape);
+        return res;
     }
     const std::string method = setup.cpu ? "cpu" : "gl";
     if (r.tolerance > 0) {
         ToleranceSetup t;
         t.tolerance = r.tolerance;
         t.base = setup;
-        const ToleranceResult res = measureToTolerance(renderer, scene, t);
-        json j = row(r, res.measurement, res.setup.width, res.setup.height, method);
-        toleranceFields(j, res);
-        if (scene.brdf.measured) tableError(j, renderer, r, res.setup, res.measurement.shape);
-        return j;
+        const ToleranceResult tr = measureToTolerance(renderer, scene, t);
+        Result res = resultOf(r, tr.measurement, tr.setup.width, tr.setup.height, method);
+        res.tolerance =
+            ToleranceFields{tr.errorEstimate,      tr.predictedError, tr.met,      tr.setup,     tr.checkSetup,
+                            tr.check.shape.aspect, tr.rounds,         tr.total_ms, tr.startup_ms};
+        if (scene.brdf.measured) res.tableError = tableError(renderer, r, tr.setup, res.measurement.shape);
+        return res;
     }
-    const Measurement m = measure(renderer, scene, setup);
-    json j = row(r, m, setup.width, setup.height, method);
-    if (renderer) addPrefilterFields(j, *renderer, scene, setup, m);  // --prefilter-check
-    if (scene.brdf.measured) tableError(j, renderer, r, setup, m.shape);
-    return j;
+    Result res = resultOf(r, measure(renderer, scene, setup), setup.width, setup.height, method);
+    if (renderer) res.prefilter = prefilterFields(*renderer, scene, setup, res.measurement);  // --prefilter-check
+    if (scene.brdf.measured) res.tableError = tableError(renderer, r, setup, res.measurement.shape);
+    return res;
 }
 
 double rowNumber(const nlohmann::json& row, const char* key) {

@@ -31,20 +31,18 @@ render::Renderer& Session::rendererFor(const scene::Resolved& r) {
     return *m_renderer;
 }
 
-nlohmann::json Session::measureOne(const scene::Resolved& r) {
+Result Session::measureOne(const scene::Resolved& r) {
     render::Renderer* gl = r.reference || r.setup.cpu ? nullptr : &rendererFor(r);
-    nlohmann::json j = measureRow(gl, r);
-    if (gl) {  // what rendered it: a GPU or llvmpipe (the strings GL_RENDERER and GL_VENDOR give)
+    Result res = measureRow(gl, r);
+    if (gl) {  // what rendered it: a GPU or llvmpipe
         const gl::ContextInfo& info = m_context->info();
-        j["gl_backend"] = gl::toString(info.backend);
-        j["gl_renderer"] = info.renderer;
-        j["gl_vendor"] = info.vendor;
+        res.gl = GlInfo{gl::toString(info.backend), info.renderer, info.vendor};
     }
-    return j;
+    return res;
 }
 
-std::vector<nlohmann::json> Session::measure(const scene::Resolved& r) {
-    std::vector<nlohmann::json> rows;
+std::vector<Result> Session::measure(const scene::Resolved& r) {
+    std::vector<Result> rows;
     scene::Resolved one = r;
     for (double angle : r.angles) {
         one.scene.light.incidenceDeg = angle;

@@ -10,7 +10,7 @@ int main() {
         hilite::scene::Values values;  // GGX alpha 0.1, implicit geometry, no Fresnel, directional light
         values.set("incidence", "60");
         hilite::measurement::Session session;
-        const double aspect = session.measureOne(hilite::scene::resolve(values))["aspect"].get<double>();
+        const double aspect = session.measureOne(hilite::scene::resolve(values)).shape().aspect;
         std::printf("hilite %s: GGX alpha 0.1 at 60 deg: aspect %.5f\n", HILITE_VERSION_STRING, aspect);
         return std::abs(aspect - 0.50166) < 0.002 ? 0 : 1;
     } catch (const std::exception& e) {

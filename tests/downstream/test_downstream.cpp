@@ -20,7 +20,7 @@ nlohmann::json measureGgx(double incidenceDeg, hilite::scene::Values* other = nu
     session.makeCurrent();  // another test case's Session may have made its own context current since
     if (other) {
         other->set("incidence", std::to_string(incidenceDeg));
-        return session.measureOne(hilite::scene::resolve(*other));
+        return hilite::measurement::toJson(session.measureOne(hilite::scene::resolve(*other)));
     }
     hilite::scene::Values values;
     values.set("model", "ggx");
@@ -29,7 +29,7 @@ nlohmann::json measureGgx(double incidenceDeg, hilite::scene::Values* other = nu
     values.set("fresnel", "none");
     values.set("size", "512");
     values.set("incidence", std::to_string(incidenceDeg));
-    return session.measureOne(hilite::scene::resolve(values));
+    return hilite::measurement::toJson(session.measureOne(hilite::scene::resolve(values)));
 }
 
 }  // namespace

@@ -80,7 +80,7 @@ TEST_CASE("truth suite: GL and the reference against the exhaustive scan-line tr
         CAPTURE(t.keys);
         const scene::Resolved r = test::resolveKeys(t.keys);
         const auto ref = measurement::measureReference(r.scene, r.setup.options).shape;
-        const nlohmann::json gl = session.measureOne(r);
+        const nlohmann::json gl = measurement::toJson(session.measureOne(r));
         std::string rf, gf;
         for (auto f : ref.flags) rf += std::string(analysis::toString(f)) + ",";
         for (const auto& f : gl["flags"]) gf += f.get<std::string>() + ",";

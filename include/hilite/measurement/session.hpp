@@ -1,7 +1,7 @@
 #pragma once
 // A measuring session: the GL context and renderer made once, on first need, and reused by every
 // measurement after it (a context costs tens of milliseconds; a measurement about two). The library's
-// entry point: scene::Values -> scene::resolve -> Session::measure -> rows.
+// entry point: scene::Values -> scene::resolve -> Session::measure -> results (toJson: their rows).
 //
 // Threading: a Session belongs to one thread at a time (its GL context is current on the thread that made
 // it); use one Session per thread.
@@ -32,10 +32,10 @@ public:
     Session(const Session&) = delete;
     Session& operator=(const Session&) = delete;
 
-    /// One row per incidence angle of `r` (r.angles), measured as its values ask.
-    std::vector<nlohmann::json> measure(const scene::Resolved& r);
-    /// One row for the scene at r.scene.light.incidenceDeg.
-    nlohmann::json measureOne(const scene::Resolved& r);
+    /// One result per incidence angle of `r` (r.angles), measured as its values ask.
+    std::vector<Result> measure(const scene::Resolved& r);
+    /// One result for the scene at r.scene.light.incidenceDeg.
+    Result measureOne(const scene::Resolved& r);
     /// The renderer (made on first use), after a .brdf scene's probe and with its time limit set.
     render::Renderer& rendererFor(const scene::Resolved& r);
     /// The GL renderer's description ("llvmpipe (LLVM 15.0.6, 256 bits)"), "" before the first GL render.
