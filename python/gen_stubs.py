@@ -1,7 +1,8 @@
 """Writes the hilite package's type stubs (__init__.pyi, brdf.pyi) from the parameter registry of the
 built module: every keyword of measure/render/Scene/brdf with its type, and the docstrings (ranges,
-defaults, help). Run by the build (python/CMakeLists.txt): gen_stubs.py OUT_DIR, with the built package on
-PYTHONPATH."""
+defaults, help); the rows measure, fit, run and merge return as TypedDicts (a measurement row: the registry's
+parameter columns, then the module's measurement columns). Run by the build (python/CMakeLists.txt):
+gen_stubs.py OUT_DIR, with the built package on PYTHONPATH."""
 
 import os
 import sys
@@ -39,6 +40,77 @@ def kw_type(p, sweep):
     return t + " | None = None"
 
 
+# A parameter column's value by the parameter's kind (scene::parameterColumns): a non-finite number is None.
+COLUMN_TYPES = {"number": "float | None", "integer": "int", "choice": "str", "switch": "bool", "path": "str",
+                "rgb": "float | list[float]", "angles": "float", "size": "str", "list": "str"}
+
+_FLOAT = "float | None"
+_PER_FIELD = "dict[str, float | None]"
+# The measurement columns' types (measurement/row.cpp measurementColumns). A column the module lists and this
+# table lacks stops the build: a new row field gets its type here.
+MEASUREMENT_TYPES = {
+    **{k: _FLOAT for k in (
+        "aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg", "centroid_u_deg", "centroid_v_deg",
+        "fwhm_u_deg", "fwhm_v_deg", "peak", "peak_u_deg", "peak_v_deg", "area_deg2", "cos_incidence", "fov_deg",
+        "minor_pixels", "matched_parameter", "render_ms", "measure_ms", "peak_offset_deg", "ndf_table_normalization",
+        "light_visible", "light_rule_error", "log2_bump_period_px", "analytic_aspect", "analytic_major_deg",
+        "analytic_minor_deg", "aspect_minus_analytic", "major_over_analytic", "minor_over_analytic", "slope_rms",
+        "slope_ks", "prefilter_aspect", "prefilter_aspect_minus_analytic", "prefilter_major_over_analytic",
+        "prefilter_minor_over_analytic", "next_seed_aspect", "next_seed_aspect_minus_analytic",
+        "next_seed_major_over_analytic", "next_seed_minor_over_analytic", "prefilter_block_error",
+        "supersample_block_noise", "prefilter_error")},
+    **{k: "int" for k in ("components", "renders", "bump_samples_center", "prefilter_blocks",
+                          "prefilter_unresolved_blocks")},
+    **{k: "str" for k in ("size", "method", "brdf_params", "framing", "framing_note", "error_estimate_from",
+                          "table_error_from", "framed_about", "bump_filter_used")},
+    "flags": "list[str]",
+    # a .brdf file's resolution convergence per field, or --tolerance's estimate of the aspect's error
+    "error_estimate": f"float | {_PER_FIELD}",
+    "table_error": _PER_FIELD,
+}
+# Fields a row carries beyond its columns (not in results.csv's column list).
+ROW_EXTRAS = {
+    "lobe": "str", "parts": "list[Part]", "error_estimate_sizes": "str",
+    # --tolerance
+    "predicted_error": "float", "tolerance_met": "bool", "settings": "ToleranceSettings",
+    "check": "ToleranceCheck", "rounds": "int", "time_ms": "float", "startup_ms": "float",
+    # a GL measurement: what rendered it
+    "gl_backend": "str", "gl_renderer": "str", "gl_vendor": "str",
+}
+PART = {k: _FLOAT for k in ("aspect", "eccentricity", "major_deg", "minor_deg", "orientation_deg",
+                            "centroid_u_deg", "centroid_v_deg", "area_deg2")}
+PART.update(horizon_cut="bool", holds_peak="bool", measured="bool")
+TOLERANCE_SETTINGS = {"size": "str", "boundary": "Literal['subpixel', 'pixel']", "supersample": "int",
+                      "framing": "Literal['fixed', 'auto']", "renderer": "Literal['cpu', 'gl']"}
+TOLERANCE_CHECK = {"size": "str", "aspect": "float"}
+# experiments/fit.cpp toJson: one object per model
+FIT = {"model": "str", "params": "dict[str, float]", "residual": "float", "rank": "int", "target": "str",
+       "evaluations": "int", "time_ms": "float", "stop": "str", "thresholds": "list[float]",
+       "weights": "list[float]", "incidence_deg": "list[float]", "aspect_threshold": "float",
+       "target_aspect": "list[float | None]", "aspect": "list[float | None]",
+       "aspect_residual": "list[float | None]"}
+RUN = {"name": "str", "dir": "str", "configurations": "int", "measured": "int", "seconds": "float",
+       "finalized": "bool"}
+MERGE = {"dir": "str", "rows": "int", "expected": "int", "shards": "int"}
+
+
+def row_fields():
+    """Every field of a measurement row with its type: the parameter columns, then the measurement's."""
+    fields = {p["column"]: COLUMN_TYPES[p["kind"]] for p in hilite.REGISTRY if p["column"]}
+    missing = [c for c in hilite._hilite.measurement_columns() if c not in MEASUREMENT_TYPES]
+    if missing:
+        sys.exit(f"gen_stubs.py: no type for the measurement column(s) {', '.join(missing)}: add them to "
+                 "MEASUREMENT_TYPES")
+    fields.update((c, MEASUREMENT_TYPES[c]) for c in hilite._hilite.measurement_columns())
+    fields.update(ROW_EXTRAS)
+    return fields
+
+
+def typed_dict(name, fields, doc, total=True):
+    head = f"class {name}(TypedDict{'' if total else ', total=False'}):\n    \"\"\"{doc}\"\"\"\n"
+    return head + "".join(f"    {k}: {t}\n" for k, t in fields.items()) + "\n"
+
+
 def keywords(sweep, names=None):
     return "".join(f"    {p['name']}: {kw_type(p, sweep)},\n" for p in hilite.REGISTRY
                    if names is None or p["name"] in names)
@@ -50,7 +122,7 @@ def doc(f, indent="    "):
 
 
 def main(out):
-    init = HEADER + '''from typing import Any, Literal, Mapping, Sequence, overload
+    init = HEADER + '''from typing import Any, Literal, Mapping, Sequence, TypedDict, overload
 import os
 
 import numpy as np
@@ -66,24 +138,33 @@ class InputError(ValueError): ...
 class MachineError(RuntimeError): ...
 
 '''
+    init += typed_dict("Part", PART, "One connected part of the region with its own ellipse (Row['parts']).")
+    init += typed_dict("ToleranceSettings", TOLERANCE_SETTINGS, "The settings --tolerance chose.")
+    init += typed_dict("ToleranceCheck", TOLERANCE_CHECK, "The finer setting --tolerance checked against.")
+    init += typed_dict("Row", row_fields(), "A measurement row (`hilite measure --json`): the parameter columns "
+                       "that apply to the scene, then the measurement fields present (a key may be absent).",
+                       total=False)
+    init += typed_dict("FitRow", FIT, "One model's fit (`hilite fit --json`).")
+    init += typed_dict("RunSummary", RUN, "What hilite.run did.")
+    init += typed_dict("MergeSummary", MERGE, "What hilite.merge did.")
     init += ("def measure(\n    scene: Scene | str | os.PathLike[str] | None = None,\n    *,\n" + keywords(True) +
-             ") -> dict[str, Any]:\n" + doc(hilite.measure) + "    ...\n\n")
+             ") -> Row | dict[str, npt.NDArray[Any]]:\n" + doc(hilite.measure) + "    ...\n\n")
     for maps, ret in (("Literal[False] = False", "npt.NDArray[np.float32]"),
                       ("Literal[True]", "tuple[npt.NDArray[np.float32], dict[str, npt.NDArray[np.float64]]]")):
         init += ("@overload\ndef render(\n    scene: Scene | str | os.PathLike[str] | None = None,\n    *,\n"
                  f"    maps: {maps},\n" + keywords(False) + f") -> {ret}: ...\n")
     init += "\n"
-    init += "def columns(rows: Sequence[Mapping[str, Any]]) -> dict[str, npt.NDArray[Any]]:\n" + doc(hilite.columns) + "    ...\n\n"
+    init += "def columns(rows: Sequence[Mapping[str, Any]] | Sequence[Row]) -> dict[str, npt.NDArray[Any]]:\n" + doc(hilite.columns) + "    ...\n\n"
     init += ("def fit(\n    target: str | os.PathLike[str] | None = None,\n    *,\n    models: Sequence[str] = ...,\n"
              "    thresholds: Sequence[float] = ...,\n    weights: Sequence[float] | None = None,\n"
              "    fit_anisotropy: bool = False,\n    fit_f0: bool = False,\n    fit_geometry: str | None = None,\n"
              "    fit_fresnel: str | None = None,\n    max_evaluations: int = 80,\n"
              "    scene: Scene | str | os.PathLike[str] | None = None,\n" + keywords(False) +
-             ") -> list[dict[str, Any]]:\n" + doc(hilite.fit) + "    ...\n\n")
+             ") -> list[FitRow]:\n" + doc(hilite.fit) + "    ...\n\n")
     init += ("def run(experiment: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *, resume: bool = False,\n"
-             "        shard: str | None = None, gl_backend: str | None = None) -> dict[str, Any]:\n" + doc(hilite.run) + "    ...\n\n")
+             "        shard: str | None = None, gl_backend: str | None = None) -> RunSummary:\n" + doc(hilite.run) + "    ...\n\n")
     init += ("def merge(shards: Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *,\n"
-             "          gl_backend: str | None = None) -> dict[str, Any]:\n" + doc(hilite.merge) + "    ...\n\n")
+             "          gl_backend: str | None = None) -> MergeSummary:\n" + doc(hilite.merge) + "    ...\n\n")
     init += "def gl_renderer() -> str: ...\ndef parameters() -> list[dict[str, Any]]: ...\n\n"
     S = hilite.Scene
     init += ("class Scene:\n" + doc(S) + "    def __init__(\n        self,\n        *,\n" +

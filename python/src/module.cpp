@@ -355,6 +355,8 @@ PYBIND11_MODULE(_hilite, m) {
     py::register_exception<SystemError>(m, "MachineError", PyExc_RuntimeError);
     m.attr("version") = kVersionString;
     m.def("registry", &registryList);
+    // the measurement fields of a row, in results.csv's order: the stubs' typed row (python/gen_stubs.py)
+    m.def("measurement_columns", &measurement::measurementColumns);
     m.def("check", [](const std::string& name, const std::string& text) {
         const scene::Param* p = scene::find(name);
         return p ? scene::check(*p, text) : std::string("unknown parameter");

@@ -45,3 +45,58 @@ def read_pfm(path):
 def hilite():
     import hilite as h
     return h
+
+
+def stub_typed_dicts(hilite):
+    """The TypedDicts of the generated __init__.pyi: {class name: {field: annotation text}}."""
+    import ast
+    tree = ast.parse(open(os.path.join(os.path.dirname(hilite.__file__), "__init__.pyi")).read())
+    return {n.name: {a.target.id: ast.unparse(a.annotation) for a in n.body if isinstance(a, ast.AnnAssign)}
+            for n in tree.body if isinstance(n, ast.ClassDef) and any(ast.unparse(b) == "TypedDict" for b in n.bases)}
+
+
+def _split(text, sep):
+    """`text` split at `sep` outside brackets."""
+    parts, depth, cur = [], 0, ""
+    for ch in text:
+        depth += ch == "["
+        depth -= ch == "]"
+        if ch == sep and depth == 0:
+            parts.append(cur.strip())
+            cur = ""
+        else:
+            cur += ch
+    return parts + [cur.strip()]
+
+
+def matches(value, annotation, dicts):
+    """Whether `value` has the stub's type `annotation` (the forms gen_stubs.py writes)."""
+    for t in _split(annotation, "|"):
+        if t == "None" and value is None or t == "Any":
+            return True
+        if t == "bool" and isinstance(value, bool):
+            return True
+        if t == "int" and isinstance(value, int) and not isinstance(value, bool):
+            return True
+        if t == "float" and isinstance(value, (int, float)) and not isinstance(value, bool):
+            return True
+        if t == "str" and isinstance(value, str):
+            return True
+        if t.startswith("Literal[") and value in [eval(x) for x in _split(t[8:-1], ",")]:
+            return True
+        if t.startswith("list[") and isinstance(value, list) and all(matches(v, t[5:-1], dicts) for v in value):
+            return True
+        if t.startswith("dict[") and isinstance(value, dict):
+            _, vt = _split(t[5:-1], ",")
+            if all(isinstance(k, str) and matches(v, vt, dicts) for k, v in value.items()):
+                return True
+        if t in dicts and isinstance(value, dict) and not typed_dict_mismatches(value, t, dicts):
+            return True
+    return False
+
+
+def typed_dict_mismatches(row, name, dicts):
+    """The keys of `row` that the stub's TypedDict `name` lacks or types otherwise ([] when it describes it)."""
+    fields = dicts[name]
+    return [f"{k}: {v!r} is not {fields.get(k, '(no such field)')}" for k, v in row.items()
+            if k not in fields or not matches(v, fields[k], dicts)]

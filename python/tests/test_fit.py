@@ -2,7 +2,7 @@
 
 import pytest
 
-from conftest import cli, cli_rows
+from conftest import cli, cli_rows, stub_typed_dicts, typed_dict_mismatches
 
 
 SWEEP = dict(incidence="0:80:20", size=128)
@@ -22,6 +22,9 @@ def test_fit_equals_the_cli(hilite):
     assert ggx["rank"] == 1
     assert abs(ggx["params"]["roughness"] / 0.1 - 1) < 0.01
     assert got[0]["aspect_residual"][-1] > 0.5  # phong stays round at 80 deg while ggx narrows
+    dicts = stub_typed_dicts(hilite)  # each object is the stubs' FitRow, every field present
+    for g in got:
+        assert set(g) == set(dicts["FitRow"]) and typed_dict_mismatches(g, "FitRow", dicts) == []
 
 
 def test_fit_of_a_table_file(hilite, tmp_path):

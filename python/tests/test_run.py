@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from conftest import cli, without_times
+from conftest import cli, stub_typed_dicts, typed_dict_mismatches, without_times
 
 EXPERIMENT = """[experiment]
 name = "tiny"
@@ -33,6 +33,8 @@ def test_run_equals_cli(hilite, tmp_path):
     exp.write_text(EXPERIMENT)
     s = hilite.run(exp, tmp_path / "py")
     assert s["configurations"] == 4 and s["measured"] == 4 and s["finalized"]
+    dicts = stub_typed_dicts(hilite)
+    assert set(s) == set(dicts["RunSummary"]) and typed_dict_mismatches(s, "RunSummary", dicts) == []
     cli("run", exp, "-o", tmp_path / "cli")
     assert rows(tmp_path / "py/results.jsonl") == rows(tmp_path / "cli/results.jsonl")
     assert (tmp_path / "py/summary.md").exists() and (tmp_path / "py/aspect.png").exists()
@@ -50,6 +52,8 @@ def test_shards_and_merge(hilite, tmp_path):
     assert a["measured"] + b["measured"] == 4 and not a["finalized"]
     m = hilite.merge([tmp_path / "s1", tmp_path / "s2"], tmp_path / "all")
     assert m["rows"] == m["expected"] == 4
+    dicts = stub_typed_dicts(hilite)
+    assert set(m) == set(dicts["MergeSummary"]) and typed_dict_mismatches(m, "MergeSummary", dicts) == []
     with pytest.raises(hilite.InputError, match="shard"):
         hilite.run(exp, tmp_path / "s3", shard="3/2")
 
