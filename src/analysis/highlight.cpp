@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ostream>
 #include <sstream>
+#include <utility>
 
 namespace hilite::analysis {
 
@@ -40,11 +41,12 @@ std::ostream& operator<<(std::ostream& os, const Shape& s) {
        << ", orientation=" << s.orientation_deg << ", centroid=(" << s.centroid_u_deg << ", " << s.centroid_v_deg
        << "), fwhm=(" << s.fwhm_u_deg << ", " << s.fwhm_v_deg << "), area=" << s.area_deg2
        << " deg2, pixels=" << s.region_pixels << ", minor_pixels=" << s.minor_pixels << ", flags=[";
-    for (size_t i = 0; i < s.flags.size(); ++i) os << (i ? "," : "") << s.flags[i];
+    const char* sep = "";
+    for (Flag f : s.flags) os << std::exchange(sep, ",") << f;
     return os << "]}";
 }
 
-bool Shape::has(Flag f) const { return std::find(flags.begin(), flags.end(), f) != flags.end(); }
+bool Shape::has(Flag f) const { return flags.has(f); }
 
 void validate(const Options& opt) {
     // Checked where the numbers enter the library: a threshold of 0 or 1 makes the region everything

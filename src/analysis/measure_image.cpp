@@ -452,7 +452,7 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     Survey sv = survey(px);
     if (!(sv.peak > 0.f) ||
         (opt.level > 0 && double(sv.peak) < opt.level)) {  // all dark, nothing visible or above the level
-        s.flags.push_back(Flag::NoHighlight);
+        s.flags.insert(Flag::NoHighlight);
         return s;
     }
     locatePeak(px, sv);
@@ -469,10 +469,10 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     // Pixel pitch: sqrt of the mean (u,v) area of the region's pixels (their weights sum to about s0).
     const double pitch = std::sqrt(sums.m.s0 / double(sums.pixels));
     s.minor_pixels = 2.0 * deg2rad(s.minor_deg) / pitch;
-    if (sums.touchesBorder) s.flags.push_back(Flag::Clipped);
-    if (sums.touchesSky) s.flags.push_back(Flag::HorizonCut);
-    if (s.minor_pixels < opt.minPixelsAcross) s.flags.push_back(Flag::UnderResolved);
-    if (double(sv.minVisible) >= th.T) s.flags.push_back(Flag::CoversFrame);
+    if (sums.touchesBorder) s.flags.insert(Flag::Clipped);
+    if (sums.touchesSky) s.flags.insert(Flag::HorizonCut);
+    if (s.minor_pixels < opt.minPixelsAcross) s.flags.insert(Flag::UnderResolved);
+    if (double(sv.minVisible) >= th.T) s.flags.insert(Flag::CoversFrame);
     return s;
 }
 

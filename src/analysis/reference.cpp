@@ -200,7 +200,7 @@ Shape measureReference(const LobeFunction& f, const Options& opt, double searchR
     s.minor_pixels = std::numeric_limits<double>::infinity();
     Candidate peak = coarsePeak(f, hint, searchRadius);
     if (!(peak.L > 0.0)) {
-        s.flags.push_back(Flag::NoHighlight);
+        s.flags.insert(Flag::NoHighlight);
         return s;
     }
     peak = refinePeak(f, peak, 2.0 * searchRadius / kCoarseGrid, hint, searchRadius);
@@ -221,10 +221,10 @@ Shape measureReference(const LobeFunction& f, const Options& opt, double searchR
     s.peak_v_deg = rad2deg(peak.q.y);
     s.fwhm_u_deg = rad2deg(r[0] + r[kContourAngles / 2]);
     s.fwhm_v_deg = rad2deg(r[kContourAngles / 4] + r[3 * kContourAngles / 4]);
-    if (cut) s.flags.push_back(Flag::HorizonCut);
+    if (cut) s.flags.insert(Flag::HorizonCut);
     if (beyondContour(f, r, peak.q, opt.threshold * peak.L, hint, searchRadius) ||
         raysReenter(f, r, peak.q, opt.threshold * peak.L))
-        s.flags.push_back(Flag::NotStarShaped);
+        s.flags.insert(Flag::NotStarShaped);
     return s;
 }
 

@@ -375,7 +375,7 @@ Shape measureLines(const LobeFunction& f, const Options& opt, double peak, doubl
     Shape s;
     s.minor_pixels = std::numeric_limits<double>::infinity();
     if (!(peak > 0) || boxes.empty()) {
-        s.flags.push_back(Flag::NoHighlight);
+        s.flags.insert(Flag::NoHighlight);
         s.components = 0;
         return s;
     }
@@ -474,8 +474,8 @@ Shape measureLines(const LobeFunction& f, const Options& opt, double peak, doubl
             return a.area_deg2 > b.area_deg2;
         });
     }
-    if (anyCut) s.flags.push_back(Flag::HorizonCut);
-    if (exhausted) s.flags.push_back(Flag::NotConverged);
+    if (anyCut) s.flags.insert(Flag::HorizonCut);
+    if (exhausted) s.flags.insert(Flag::NotConverged);
     return s;
 }
 

@@ -81,12 +81,12 @@ Shape Supersampler::measure(const Options& opt) const {
                          " renders added");
     Shape s;
     if (!(m_peak > 0.f)) {
-        s.flags.push_back(Flag::NoHighlight);
+        s.flags.insert(Flag::NoHighlight);
         return s;
     }
     const double T = opt.level > 0 ? opt.level : opt.threshold * double(m_peak);
     if (!(double(m_peak) >= T)) {
-        s.flags.push_back(Flag::NoHighlight);
+        s.flags.insert(Flag::NoHighlight);
         return s;
     }
     const size_t n = m_sums.size(), k = size_t(m_samples);
@@ -145,10 +145,10 @@ Shape Supersampler::measure(const Options& opt) const {
     s.fwhm_u_deg = rad2deg(rowsU ? alongRow : alongCol), s.fwhm_v_deg = rad2deg(rowsU ? alongCol : alongRow);
     const double pitch = std::sqrt(s0 / coveredPixels);
     s.minor_pixels = 2.0 * deg2rad(s.minor_deg) / pitch;
-    if (border) s.flags.push_back(Flag::Clipped);
-    if (horizon) s.flags.push_back(Flag::HorizonCut);
-    if (s.minor_pixels < opt.minPixelsAcross) s.flags.push_back(Flag::UnderResolved);
-    if (coversAll) s.flags.push_back(Flag::CoversFrame);
+    if (border) s.flags.insert(Flag::Clipped);
+    if (horizon) s.flags.insert(Flag::HorizonCut);
+    if (s.minor_pixels < opt.minPixelsAcross) s.flags.insert(Flag::UnderResolved);
+    if (coversAll) s.flags.insert(Flag::CoversFrame);
     return s;
 }
 

@@ -28,8 +28,8 @@ double halfWidthAlong(const TwinSampler& f, double du, double dv, double level) 
 }
 
 void replace(analysis::Shape& s, analysis::Flag from, analysis::Flag to) {
-    s.flags.erase(std::remove(s.flags.begin(), s.flags.end(), from), s.flags.end());
-    if (!s.has(to)) s.flags.push_back(to);
+    s.flags.erase(from);
+    s.flags.insert(to);
 }
 
 }  // namespace
@@ -86,17 +86,15 @@ void diagnose(const render::Scene& scene, double threshold, Path path, analysis:
         if (lightReaches(scene) && F > 0) replace(shape, Flag::NoHighlight, Flag::Mirror);
         return;
     }
-    if (path != Path::Reference && scene.light.area() && render::lightRule(scene).error > kLightRuleFlag &&
-        !shape.has(Flag::LightUndersampled))
-        shape.flags.push_back(Flag::LightUndersampled);
-    if (unboundedAtHorizon(scene, shape) && !shape.has(Flag::UnboundedAtHorizon))
-        shape.flags.push_back(Flag::UnboundedAtHorizon);
+    if (path != Path::Reference && scene.light.area() && render::lightRule(scene).error > kLightRuleFlag)
+        shape.flags.insert(Flag::LightUndersampled);
+    if (unboundedAtHorizon(scene, shape)) shape.flags.insert(Flag::UnboundedAtHorizon);
     const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
     if (!(w.peak > 0)) return;
     // The lobe exists, yet no pixel centre of a fixed frame sees it: the frame is too coarse for it.
     if (path != Path::Reference && shape.has(Flag::NoHighlight)) replace(shape, Flag::NoHighlight, Flag::UnderResolved);
-    if (path == Path::Gl && w.major > 0 && w.minor < kEffectivelyMirrorHalfWidth && !shape.has(Flag::EffectivelyMirror))
-        shape.flags.push_back(Flag::EffectivelyMirror);
+    if (path == Path::Gl && w.major > 0 && w.minor < kEffectivelyMirrorHalfWidth)
+        shape.flags.insert(Flag::EffectivelyMirror);
 }
 
 }  // namespace hilite::measurement

@@ -326,7 +326,7 @@ Measurement measureParts(const ViewFn& view, const render::Scene& scene, const M
             total.region_pixels += s.region_pixels;
             total.minor_pixels = std::min(total.minor_pixels, s.minor_pixels);
             for (analysis::Flag f : s.flags)
-                if (f != analysis::Flag::NoHighlight && !total.has(f)) total.flags.push_back(f);
+                if (f != analysis::Flag::NoHighlight) total.flags.insert(f);
             // A view that found nothing of its part: the survey's part is another's (joined to it below the
             // survey's resolution, so measured in that one's view) or lies below the level: nothing is missing.
             // A part that runs out of its view is `clipped` (the flags above), not lost.
@@ -348,7 +348,7 @@ void flagPartsOutside(const render::Scene& scene, const LobeSurvey& survey, cons
         double nx = 0, ny = 0;
         const dvec3 we = chart.direction(p.seed.x, p.seed.y);
         if (!cam.project(-we, nx, ny) || std::abs(nx) > 1 || std::abs(ny) > 1) {
-            if (!shape.has(analysis::Flag::PartsNotMeasured)) shape.flags.push_back(analysis::Flag::PartsNotMeasured);
+            shape.flags.insert(analysis::Flag::PartsNotMeasured);
             return;
         }
     }
@@ -365,8 +365,7 @@ std::optional<LobeSurvey> surveyFor(const render::Scene& scene, double threshold
 
 /// A lobe the survey found unbounded toward the horizon has no peak, however ordinary its pixels look.
 void flagUnbounded(const std::optional<LobeSurvey>& survey, analysis::Shape& shape) {
-    if (survey && survey->unbounded && !shape.has(analysis::Flag::UnboundedAtHorizon))
-        shape.flags.push_back(analysis::Flag::UnboundedAtHorizon);
+    if (survey && survey->unbounded) shape.flags.insert(analysis::Flag::UnboundedAtHorizon);
 }
 
 Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scene, const MeasureSetup& setup) {
@@ -462,8 +461,7 @@ Measurement measureReference(const render::Scene& scene, const analysis::Options
             m.shape = analysis::measureLines(f, options, survey.peak, survey.peakUV.x, survey.peakUV.y, survey.boxes());
     } else {  // no lobe, or one without a peak (G = 1 at the horizon): about the mirror direction, flagged
         m.shape = analysis::measureReference(f, options, radius);
-        if (survey.unbounded && !m.shape.has(analysis::Flag::UnboundedAtHorizon))
-            m.shape.flags.push_back(analysis::Flag::UnboundedAtHorizon);
+        if (survey.unbounded) m.shape.flags.insert(analysis::Flag::UnboundedAtHorizon);
     }
     diagnose(scene, options.threshold, Path::Reference, m.shape);
     m.measure_ms = msSince(t0);

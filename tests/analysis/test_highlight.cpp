@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 using namespace hilite;
 using namespace hilite::analysis;
@@ -63,6 +64,21 @@ TEST_CASE("analysis::Shape::has") {
     s.flags = {Flag::UnderResolved};
     CHECK(s.has(Flag::UnderResolved));
     CHECK_FALSE(s.has(Flag::Clipped));
+}
+
+TEST_CASE("analysis::FlagSet: each flag once, in the order raised") {
+    FlagSet f{Flag::HorizonCut, Flag::Clipped, Flag::HorizonCut};
+    CHECK(f.size() == 2);
+    f.insert(Flag::UnderResolved);
+    f.insert(Flag::Clipped);  // there already: stays where it was
+    CHECK(std::vector<Flag>(f.begin(), f.end()) ==
+          std::vector<Flag>{Flag::HorizonCut, Flag::Clipped, Flag::UnderResolved});
+    f.erase(Flag::Clipped);
+    CHECK_FALSE(f.has(Flag::Clipped));
+    CHECK(f == FlagSet{Flag::HorizonCut, Flag::UnderResolved});
+    CHECK(f != FlagSet{Flag::UnderResolved, Flag::HorizonCut});  // the order is part of the value (the row's)
+    f.erase(Flag::Mirror);                                       // absent: nothing
+    CHECK(f.size() == 2);
 }
 
 TEST_CASE("analysis::setEllipse") {

@@ -83,7 +83,7 @@ Shape naiveInOut(const ImageF& img, const Options& opt) {
         for (int x = 0; x < img.width; ++x)
             if (visible(x, y)) peak = std::max(peak, double(img.pixel(x, y)[0]));
     if (peak == 0) {
-        s.flags.push_back(Flag::NoHighlight);
+        s.flags.insert(Flag::NoHighlight);
         return s;
     }
     const double T = opt.threshold * peak;
@@ -111,10 +111,10 @@ Shape naiveInOut(const ImageF& img, const Options& opt) {
                         svv / s0 - sv * sv / (s0 * s0)};
     setEllipse(s, m);
     s.minor_pixels = 2.0 * deg2rad(s.minor_deg) / std::sqrt(s0 / double(s.region_pixels));
-    if (clipped) s.flags.push_back(Flag::Clipped);
-    if (cut) s.flags.push_back(Flag::HorizonCut);
-    if (s.minor_pixels < opt.minPixelsAcross) s.flags.push_back(Flag::UnderResolved);
-    if (covers) s.flags.push_back(Flag::CoversFrame);
+    if (clipped) s.flags.insert(Flag::Clipped);
+    if (cut) s.flags.insert(Flag::HorizonCut);
+    if (s.minor_pixels < opt.minPixelsAcross) s.flags.insert(Flag::UnderResolved);
+    if (covers) s.flags.insert(Flag::CoversFrame);
     return s;
 }
 
@@ -268,7 +268,7 @@ TEST_CASE("analysis::measureImage") {
             CHECK(s.major_deg == doctest::Approx(rad2deg(2.0 * std::sqrt(2.0 / 3.0))).epsilon(1e-12));
             CHECK(s.aspect == doctest::Approx(1.0).epsilon(1e-12));
             CHECK(s.minor_pixels == doctest::Approx(4.0 * std::sqrt(2.0 / 3.0)).epsilon(1e-12));
-            CHECK(s.flags == std::vector<Flag>{Flag::UnderResolved});
+            CHECK(s.flags == FlagSet{Flag::UnderResolved});
         }
     }
     SUBCASE("linear ramp: sub-pixel coverage and the width crossings") {
@@ -330,12 +330,12 @@ TEST_CASE("analysis::measureImage flags") {
     SUBCASE("no highlight: all dark, or nothing visible") {
         ImageF dark = gridImage(16, 16, [](int, int) { return 0.f; });
         Shape s = analyse(dark);
-        CHECK(s.flags == std::vector<Flag>{Flag::NoHighlight});
+        CHECK(s.flags == FlagSet{Flag::NoHighlight});
         CHECK(s.peak == 0.0);
         CHECK(s.major_deg == 0.0);
         const ImageF sky(16, 16, 4);
         s = analyse(sky);
-        CHECK(s.flags == std::vector<Flag>{Flag::NoHighlight});
+        CHECK(s.flags == FlagSet{Flag::NoHighlight});
     }
     SUBCASE("covers the frame: a wide lobe in a tiny field of view") {
         const MirrorChart chart(0.0, 0.0);

@@ -40,11 +40,11 @@ struct SceneCase {
     std::string name;
     render::Scene scene;
     Camera camera;
-    measurement::MeasureSetup setup;       ///< the measurement (default: automatic framing, 256^2)
-    std::vector<analysis::Flag> glFlags;   ///< exactly the flags the GL measurement must report
-    std::vector<analysis::Flag> refFlags;  ///< exactly the flags the double reference must report
-    double tolerance = 0;                  ///< GL vs twin, relative, per pixel; 0: pixelTolerance() of the lobe
-    double aspectTolerance = 0;            ///< GL vs reference in aspect; 0: the suite's (0.005)
+    measurement::MeasureSetup setup;  ///< the measurement (default: automatic framing, 256^2)
+    analysis::FlagSet glFlags;        ///< exactly the flags the GL measurement must report
+    analysis::FlagSet refFlags;       ///< exactly the flags the double reference must report
+    double tolerance = 0;             ///< GL vs twin, relative, per pixel; 0: pixelTolerance() of the lobe
+    double aspectTolerance = 0;       ///< GL vs reference in aspect; 0: the suite's (0.005)
 };
 
 const std::vector<SceneCase>& sceneCases();
@@ -86,7 +86,7 @@ bool shapeFinite(const analysis::Shape& s);
 /// A measurement answers with numbers (peak > 0 and a semi-major axis > 0) or a diagnosis that replaces
 /// them: no_highlight, mirror, under_resolved.
 bool numbersOrDiagnosis(const analysis::Shape& s);
-std::string flagList(const std::vector<analysis::Flag>& flags);
+std::string flagList(const analysis::FlagSet& flags);
 
 // ---- Term rows ----
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace hilite::hard {
 
@@ -144,9 +145,10 @@ bool numbersOrDiagnosis(const analysis::Shape& s) {
     return s.peak > 0 && s.major_deg > 0;
 }
 
-std::string flagList(const std::vector<analysis::Flag>& flags) {
+std::string flagList(const analysis::FlagSet& flags) {
     std::ostringstream s;
-    for (size_t i = 0; i < flags.size(); ++i) s << (i ? ", " : "") << analysis::toString(flags[i]);
+    const char* sep = "";
+    for (analysis::Flag f : flags) s << std::exchange(sep, ", ") << analysis::toString(f);
     return flags.empty() ? "none" : s.str();
 }
 

@@ -22,9 +22,14 @@ struct Row {
         c.scene.light.incidenceDeg = incidenceDeg;
         c.setup.width = c.setup.height = 256;
     }
-    Row& gl(std::vector<F> f) { return c.glFlags = std::move(f), *this; }
-    Row& ref(std::vector<F> f) { return c.refFlags = std::move(f), *this; }
+    Row& gl(const std::vector<F>& f) { return c.glFlags = set(f), *this; }
+    Row& ref(const std::vector<F>& f) { return c.refFlags = set(f), *this; }
     Row& both(const std::vector<F>& f) { return gl(f).ref(f); }
+    static analysis::FlagSet set(const std::vector<F>& f) {
+        analysis::FlagSet s;
+        for (F x : f) s.insert(x);
+        return s;
+    }
     Row& aspectTolerance(double t) { return c.aspectTolerance = t, *this; }
     Row& photo(double elevationDeg, double fovDeg = 40) {
         return c.camera = {View::Photo, fovDeg, elevationDeg}, *this;

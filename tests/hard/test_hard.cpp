@@ -29,7 +29,7 @@ constexpr double kWeightTolerance = 1e-4;
 /// takes the pixel edge as the horizon (measure_image.cpp), a first-order error: 2% on the semi-major axis.
 constexpr double kAspectTolerance = 0.005, kMajorTolerance = 0.01, kMajorToleranceCut = 0.02;
 
-void checkMeasurement(const analysis::Shape& s, const std::vector<analysis::Flag>& expected) {
+void checkMeasurement(const analysis::Shape& s, const analysis::FlagSet& expected) {
     INFO("shape: " << s);
     CHECK(shapeFinite(s));
     CHECK(numbersOrDiagnosis(s));

@@ -6,7 +6,9 @@
 //   - measureReference: a double-precision oracle on an analytic lobe (polar contour about the peak).
 // Depends on core only: no GL, no BRDF.
 
+#include <algorithm>
 #include <functional>
+#include <initializer_list>
 #include <iosfwd>
 #include <limits>
 #include <vector>
@@ -45,6 +47,30 @@ enum class Flag {
 /// "effectively_mirror", "unbounded_at_horizon", "not_star_shaped" (the CLI/JSON spelling).
 const char* toString(Flag);
 std::ostream& operator<<(std::ostream&, Flag);
+
+/// A shape's flags: each flag at most once, in the order they were raised (the order the row lists them in).
+class FlagSet {
+public:
+    FlagSet() = default;
+    FlagSet(std::initializer_list<Flag> flags) {
+        for (Flag f : flags) insert(f);
+    }
+    bool has(Flag f) const { return std::find(m_flags.begin(), m_flags.end(), f) != m_flags.end(); }
+    /// Adds `f` after the others; nothing if it is there already.
+    void insert(Flag f) {
+        if (!has(f)) m_flags.push_back(f);
+    }
+    void erase(Flag f) { m_flags.erase(std::remove(m_flags.begin(), m_flags.end(), f), m_flags.end()); }
+    bool empty() const { return m_flags.empty(); }
+    size_t size() const { return m_flags.size(); }
+    std::vector<Flag>::const_iterator begin() const { return m_flags.begin(); }
+    std::vector<Flag>::const_iterator end() const { return m_flags.end(); }
+    bool operator==(const FlagSet& o) const { return m_flags == o.m_flags; }
+    bool operator!=(const FlagSet& o) const { return m_flags != o.m_flags; }
+
+private:
+    std::vector<Flag> m_flags;
+};
 
 struct Options {
     double threshold = 0.5;   ///< frac: region = L >= threshold * peak, in (0, 1)
@@ -94,7 +120,7 @@ struct Shape {
     double area_deg2 = 0;                   ///< area of the region in the (u,v) plane
     long region_pixels = 0;                 ///< 0 for the reference
     double minor_pixels = 0;                ///< pixels across the minor axis, 2*minor / pitch; +inf for the reference
-    std::vector<Flag> flags;
+    FlagSet flags;
     /// Connected parts of the region {L >= frac * peak} (rule 3 of the definition: every part counts; the
     /// fields above describe them all together). 0 with no highlight.
     int components = 1;
