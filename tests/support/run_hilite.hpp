@@ -1,6 +1,6 @@
 #pragma once
 // Shared pieces of the command-line tests: run the hilite executable and capture what it prints, count
-// lines of output, and a scratch directory that is removed again.
+// lines of output, and a scratch directory that is removed again (support/temp_dir.hpp).
 //
 // The including test target defines HILITE_EXE (the path of the hilite executable), as hilite_test()
 // targets with a cli label do in tests/CMakeLists.txt.
@@ -9,14 +9,14 @@
 // using-directive, would be ambiguous with the namespace hilite. For the same reason a file using these
 // helpers unqualified should not also include the project's own headers.
 
+#include "support/temp_dir.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #ifndef HILITE_EXE
@@ -53,28 +53,5 @@ inline int lines(const std::string& s) {
     for (char c : s) n += c == '\n';
     return n;
 }
-
-/// A scratch directory <temp>/<prefix>-<pid>, emptied when made and removed with everything in it when done.
-struct TempDir {
-    std::filesystem::path path;  ///< the directory itself
-
-    explicit TempDir(const std::string& prefix)
-        : path(std::filesystem::temp_directory_path() / (prefix + "-" + std::to_string(getpid()))) {
-        std::filesystem::remove_all(path);
-        std::filesystem::create_directories(path);
-    }
-    ~TempDir() { std::filesystem::remove_all(path); }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-
-    /// The path of `name` inside the directory, as a string (the file need not exist).
-    std::string operator/(const std::string& name) const { return (path / name).string(); }
-
-    /// Writes `text` to the file `name` inside the directory and returns the file's path.
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path / name) << text;
-        return (path / name).string();
-    }
-};
 
 }  // namespace hilite_test
