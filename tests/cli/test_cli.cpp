@@ -1,4 +1,5 @@
-// The command line as a user meets it: exit codes, one-line errors, nothing written on bad input.
+// The command line as a user meets it: exit codes, one-line errors, nothing written on bad input. What `measure`
+// measures, warns and refuses is tested in-process: tests/measurement/test_measure_flags.cpp.
 
 #include "support/run_hilite.hpp"
 
@@ -73,30 +74,6 @@ TEST_CASE("cli::render writes PNG and PFM") {
     std::filesystem::remove(pfm);
 }
 
-TEST_CASE("cli::measure JSON lines carry the contract's fields") {
-    const auto r = hilite("measure --model ggx --roughness 0.1 --incidence 0:60:30 --size 128 --json", true);
-    REQUIRE(r.code == 0);
-    CHECK(lines(r.out) == 3);
-    for (const char* field :
-         {"\"model\"", "\"incidence_deg\"", "\"aspect\"", "\"eccentricity\"", "\"major_deg\"", "\"minor_deg\"",
-          "\"orientation_deg\"", "\"centroid_u_deg\"", "\"centroid_v_deg\"", "\"fwhm_u_deg\"", "\"fwhm_v_deg\"",
-          "\"peak\"", "\"flags\"", "\"renders\"", "\"size\"", "\"render_ms\"", "\"measure_ms\""}) {
-        CAPTURE(field);
-        CHECK(r.out.find(field) != std::string::npos);
-    }
-}
-
-TEST_CASE("cli::measure bad input") {
-    for (const char* args : {"--threshold 1.5", "--threshold 0", "--incidence 0:95:5", "--incidence 10:0:5",
-                             "--incidence 0:10:-1", "--incidence a,b", "--boundary fuzzy", "--gl-backend glx",
-                             "--gpu -1", "--gl-backend egl-device --gpu 1000", "--gl-backend osmesa --gpu 0"}) {
-        CAPTURE(args);
-        const auto r = hilite(std::string("measure ") + args);
-        CHECK(r.code == 2);
-        CHECK(lines(r.out) == 1);
-    }
-}
-
 TEST_CASE("cli help documents every subcommand") {
     const auto r = hilite("--help");
     CHECK(r.code == 0);
@@ -105,104 +82,62 @@ TEST_CASE("cli help documents every subcommand") {
     CHECK(m.out.find("--threshold") != std::string::npos);
 }
 
-TEST_CASE("cli::measure roughness policy: 0 is a mirror, (0, 1e-7) is raised with a warning, never silently") {
-    SUBCASE("roughness 0: a warning on stderr, the measurement says mirror") {
-        const auto r = hilite("measure --model ggx --roughness 0 --incidence 45 --json --size 64");
-        CHECK(r.code == 0);
-        CHECK(r.out.find("warning: --roughness 0 is a perfect mirror") != std::string::npos);
-        CHECK(r.out.find("\"flags\":[\"mirror\"]") != std::string::npos);
-        const auto ref = hilite("measure --model beckmann --roughness 0 --incidence 45 --json --reference", true);
-        CHECK(ref.out.find("\"flags\":[\"mirror\"]") != std::string::npos);
-    }
-    SUBCASE("roughness 1e-9: raised to 1e-7, said on stderr, and the row carries 1e-7") {
-        const auto r = hilite("measure --model ggx --roughness 1e-9 --incidence 45 --json --reference");
-        CHECK(r.code == 0);
-        CHECK(r.out.find("--roughness 1e-09 raised to 1e-07") != std::string::npos);
-        CHECK(r.out.find("\"roughness\":1e-07") != std::string::npos);
-    }
-    SUBCASE("roughness-y 0 on an anisotropic lobe is a mirror too") {
-        const auto r = hilite("measure --model ggx --roughness 0.1 --roughness-y 0 --incidence 30 --json", true);
-        CHECK(r.code == 0);
-        CHECK(r.out.find("\"mirror\"") != std::string::npos);
-    }
-    SUBCASE("the GL path says effectively_mirror below float resolution, the reference measures it") {
-        const auto gl = hilite("measure --model ggx --roughness 1e-7 --incidence 45 --json --size 128", true);
-        CHECK(gl.out.find("effectively_mirror") != std::string::npos);
-        const auto ref = hilite("measure --model ggx --roughness 1e-7 --incidence 45 --json --reference", true);
-        CHECK(ref.out.find("\"flags\":[]") != std::string::npos);
-    }
-    SUBCASE("a model without roughness takes no warning for it") {
-        const auto r = hilite("measure --model phong --roughness 0 --incidence 45 --json --reference");
-        CHECK(r.out.find("warning") == std::string::npos);
-    }
-}
-
-TEST_CASE("cli::measure says what a highlight is framed about (retroreflection)") {
-    const auto r = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64 --json", true);
-    CHECK(r.code == 0);
-    CHECK(r.out.find("\"framed_about\":\"peak (retroreflection: toward the light, 2 theta_i = 120 deg") !=
-          std::string::npos);
-    CHECK((r.out.find("\"peak_offset_deg\":120") != std::string::npos ||
-           r.out.find("\"peak_offset_deg\":119.9999") != std::string::npos));
+TEST_CASE("cli::measure's table prints what the row says: the framing (retroreflection), the tolerance line") {
+    // The rows' framed_about, peak_offset_deg and tolerance fields: tests/measurement/test_measure_flags.cpp.
     const auto t = hilite("measure --model retro --exponent 1000 --incidence 60 --size 64", true);
+    CHECK(t.code == 0);
     CHECK(t.out.find("about the peak, 120 deg from the mirror direction") != std::string::npos);
-    const auto g = hilite("measure --model ggx --incidence 60 --size 64 --json", true);
-    CHECK(g.out.find("\"framed_about\":\"mirror direction\"") != std::string::npos);
+    const auto tol = hilite("measure --model ggx --roughness 0.1 --incidence 60 --tolerance 1e-2", true);
+    CHECK(tol.code == 0);
+    CHECK(tol.out.find("tolerance 0.01:") != std::string::npos);
+    const auto brdf = hilite(
+        "measure --brdf " + std::string(HILITE_SOURCE_DIR_STR) + "/experiments/brdfs/phong.brdf --incidence 30", true);
+    CHECK(brdf.code == 0);
+    CHECK(brdf.out.find("error estimate (resolution convergence, no CPU twin for .brdf)") != std::string::npos);
 }
 
-TEST_CASE("cli tabulated NDF: bad tables are one-line errors naming file:line, exit 2, nothing written") {
-    const std::string table = tmpPath("ndf.csv"), out = tmpPath("ndf.png");
-    struct Case {
-        const char* text;
-        const char* line;
-    };
-    for (const Case c : {Case{"0, 1\n10, 0.5\n5, 0.2\n", ":3: "}, Case{"0, 1\n10, -0.5\n", ":2: "},
-                         Case{"0, 1\n10, nan\n", ":2: "}, Case{"0, 1\n", ":1: "}}) {
-        std::ofstream(table) << c.text;
-        CAPTURE(c.text);
-        for (const std::string& cmd : {"render --model tabulated --ndf-table " + table + " -o " + out,
-                                       "measure --model tabulated --ndf-table " + table}) {
-            const auto r = hilite(cmd);
-            CHECK(r.code == 2);
-            CHECK(lines(r.out) == 1);
-            CHECK(r.out.find(table + c.line) != std::string::npos);
-            CHECK_FALSE(std::filesystem::exists(out));
-        }
-    }
-    const auto missing = hilite("measure --model tabulated --ndf-table /nonexistent/ndf.csv");
-    CHECK(missing.code == 2);
-    CHECK(lines(missing.out) == 1);
-    CHECK(missing.out.find("/nonexistent/ndf.csv") != std::string::npos);
-    CHECK(hilite("measure --model tabulated").code == 2);                 // no table
-    CHECK(hilite("measure --model ggx --ndf-table " + table).code == 2);  // a table for another model
-    std::ofstream(table) << "theta_h_deg, D\n0, 4\n2, 3\n5, 1\n10, 0\n";
-    const auto ok = hilite("measure --model tabulated --ndf-table " + table + " --incidence 30 --size 64 --json", true);
-    CHECK(ok.code == 0);
-    CHECK(ok.out.find("\"ndf_table_normalization\":") != std::string::npos);
-    const auto ex = hilite("explain --model tabulated --ndf-table " + table + " --part effects", true);
-    CHECK(ex.out.find("normalized by x") != std::string::npos);
-    std::filesystem::remove(table);
-}
-
-TEST_CASE("cli a flag combination a path cannot honour is refused, never silently measured another way") {
-    struct Case {
-        const char* args;
-        const char* mentions;
-    };
-    for (const Case c : {Case{"--model beckmann --bumps explicit --renderer cpu", "--renderer cpu"},
-                         Case{"--model beckmann --bumps explicit --tolerance 1e-3", "--tolerance"},
-                         Case{"--model beckmann --bumps explicit --reference", "--reference"}}) {
-        CAPTURE(c.args);
-        const auto r = hilite(std::string("measure --incidence 30 --size 32 ") + c.args);
-        CHECK(r.code == 2);
-        CHECK(lines(r.out) == 1);
-        CHECK(r.out.find(c.mentions) != std::string::npos);
-    }
-}
-
-TEST_CASE("cli --bump-filter moments refuses ggx bumps (their slopes are not Gaussian)") {
-    const auto r = hilite("measure --model ggx --bumps explicit --bump-filter moments --size 32");
-    CHECK(r.code == 2);
-    CHECK(lines(r.out) == 1);
-    CHECK(r.out.find("--bump-filter moments") != std::string::npos);
+TEST_CASE("cli::brdf prints tables and JSON lines with the documented fields, and says what it wrote") {
+    // What the subcommands compute: tests/brdf/test_brdf_cmd.cpp, tests/experiments/test_bounces.cpp.
+    const auto fresnel = hilite("brdf fresnel --material copper --incidence 0:90:30 --json");
+    REQUIRE(fresnel.code == 0);
+    CHECK(lines(fresnel.out) == 4);
+    CHECK(fresnel.out.rfind("{\"theta_deg\":0.0,\"rgb\":[", 0) == 0);
+    CHECK(hilite("brdf fresnel --material copper --incidence 0").out.find("spectral") != std::string::npos);
+    const auto albedo =
+        hilite("brdf albedo --model none --diffuse lambert --albedo 0.2,0.4,0.6 --incidence 0,60 --json");
+    REQUIRE(albedo.code == 0);
+    CHECK(lines(albedo.out) == 2);
+    CHECK(albedo.out.find("{\"theta_deg\":60.0,\"albedo\":[") != std::string::npos);
+    CHECK(albedo.out.find("\"bihemispherical_albedo\":[") != std::string::npos);
+    const auto table = hilite("brdf albedo --model none --diffuse lambert --albedo 0.3 --incidence 0");
+    CHECK(table.out.find("# bihemispherical albedo") != std::string::npos);
+    const auto ggx = hilite("brdf normalization --model ggx --roughness 0.02,1 --json");
+    REQUIRE(ggx.code == 0);
+    CHECK(lines(ggx.out) == 2);
+    CHECK(ggx.out.rfind("{\"roughness\":0.02,\"exponent\":null,\"integral\":", 0) == 0);
+    const auto blinn = hilite("brdf normalization --model blinn --exponent 1,10000 --json");
+    CHECK(lines(blinn.out) == 2);
+    CHECK(blinn.out.find("{\"roughness\":null,\"exponent\":10000.0,\"integral\":") != std::string::npos);
+    const auto bounces = hilite(
+        "brdf bounces --roughness 0.6 --incidence 30 --exits --texels 128 --bumps-per-tile 8 "
+        "--paths 3000");
+    CHECK(bounces.code == 0);
+    CHECK(bounces.out.find("Kulla-Conty 1 - E(mu)") != std::string::npos);
+    CHECK(bounces.out.find("first reflection") != std::string::npos);
+    const std::string merl = tmpPath("ggx.binary");
+    const auto tabulate =
+        hilite("brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick --f0 0.04 -o " + merl);
+    CHECK(tabulate.code == 0);
+    CHECK(lines(tabulate.out) == 1);
+    CHECK(tabulate.out.find("wrote " + merl + ": MERL table 90 x 90 x 180") == 0);
+    CHECK(std::filesystem::file_size(merl) == 34992012);
+    std::filesystem::remove(merl);
+    const std::string png = tmpPath("terms.png");
+    const auto render = hilite(
+        "render --size 16 --model ggx --roughness 0.2 --roughness-y 0.05 --tangent-angle 30 "
+        "--material copper --geometry smith-separable --diffuse oren-nayar --sigma 20 -o " +
+        png);
+    CHECK(render.code == 0);
+    CHECK(render.out.find("material=copper wavelengths=81") != std::string::npos);
+    std::filesystem::remove(png);
 }

@@ -154,6 +154,20 @@ std::vector<Case> flagCases() {
     cases.push_back({"run {d}/elevword.toml -o {d}/f", 2,
                      "elevword.toml:10: sweep.range: must be auto or a finite number in [0, 90] (got -10)"});
     cases.push_back({"run {d}/tiny.toml --gl-backend bogus -o {d}/gb", 2, "bogus"});
+    // `hilite brdf`'s own options (the flags it shares with measure: tests/brdf/test_brdf_cmd.cpp).
+    cases.push_back({"brdf normalization --model phong", 2, "--model"});
+    cases.push_back({"brdf normalization --roughness 0.1,-2", 2, "--roughness"});
+    cases.push_back({"brdf normalization --model blinn --exponent nan", 2, "--exponent"});
+    cases.push_back({"brdf strip --material gold", 2, "-o"});
+    cases.push_back({"brdf strip --material gold --size 0 -o {d}/new.png", 2, "--size"});
+    cases.push_back({"brdf strip --material gold -o /nonexistent-dir/x.png", 2, "-o"});
+    cases.push_back({"brdf tabulate --model ggx --roughness 0.1 --roughness-y 0.3 -o {d}/new.binary", 2,
+                     "--roughness-y: a MERL table is isotropic"});
+    cases.push_back({"brdf tabulate --model ggx --roughness -1 -o {d}/new.binary", 2, "--roughness"});
+    cases.push_back({"brdf tabulate --model ggx --roughness 0.1", 2, "-o: give the MERL .binary file to write"});
+    cases.push_back({"brdf tabulate --model ggx --roughness 0.1 -o {d}", 2, "-o"});
+    cases.push_back({"brdf tabulate --model ggx --roughness 0.1 -o {d}/no/such/dir/x.binary", 2, "-o"});
+    cases.push_back({"brdf bounces --surface cubic", 2, "--surface"});
     return cases;
 }
 

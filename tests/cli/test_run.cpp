@@ -1,4 +1,5 @@
-// hilite run / merge end to end on a small experiment: rows, fields, resume and shards.
+// hilite run / merge end to end on a small experiment: rows, fields, resume and shards. Refused experiment files
+// and the shipped experiments' validation, in-process: tests/experiments/test_run_checks.cpp.
 
 #include "support/run_hilite.hpp"
 
@@ -176,41 +177,6 @@ TEST_CASE("cli::merge shards equal a single run, row for row") {
     REQUIRE(sh(std::string(HILITE_EXE) + " merge " + (d / "s1") + " " + (d / "s2") + " " + (d / "s3") + " -o " +
                (d / "merged")) == 0);
     CHECK(comparable(readCsv(d / "merged/results.csv")) == comparable(readCsv(d / "single/results.csv")));
-}
-
-TEST_CASE("cli::run bad experiment files: one line, exit 2") {
-    Dir d;
-    std::ofstream(d / "bad.toml") << "[[sweep]]\nkey = \"material.rougness\"\nvalues = [0.1]\n";
-    CHECK(sh(std::string(HILITE_EXE) + " run " + (d / "bad.toml") + " -o " + (d / "bad")) == 2);
-    std::ofstream(d / "bad2.toml") << "[[sweep]]\nkey = \"light.incidence\"\nvalues = [100]\n";
-    CHECK(sh(std::string(HILITE_EXE) + " run " + (d / "bad2.toml") + " -o " + (d / "bad2")) == 2);
-    CHECK_FALSE(fs::exists(d / "bad2/results.csv"));
-    CHECK_FALSE(fs::exists(d / "bad2"));  // not even the output folder
-    // An unknown GL backend is refused before anything is written (it was found at the first render).
-    CHECK(sh(std::string(HILITE_EXE) + " run eccentricity --gl-backend bogus -o " + (d / "gb")) == 2);
-    CHECK_FALSE(fs::exists(d / "gb"));
-    for (const char* shard : {"1/2x", "3/2", "0/1", "1.5/2", "x"}) {  // a malformed --shard is refused, not truncated
-        CAPTURE(shard);
-        CHECK(sh(std::string(HILITE_EXE) + " run eccentricity --shard " + shard + " -o " + (d / "sh")) == 2);
-        CHECK_FALSE(fs::exists(d / "sh"));
-    }
-}
-
-TEST_CASE("experiments shipped in experiments/ all validate") {
-    for (const auto& e : fs::directory_iterator(fs::path(HILITE_SOURCE_DIR_STR) / "experiments")) {
-        if (e.path().extension() != ".toml") continue;
-        CAPTURE(e.path().string());
-        Dir d;
-        // --check: the whole file, every configuration and the folder, nothing written.
-        CHECK(sh(std::string(HILITE_EXE) + " run " + e.path().string() + " --check -o " + (d / "c")) == 0);
-        CHECK(!fs::exists(d / "c"));
-        // --shard 1/100000 measures at most one configuration and writes every report from it. The bounce studies
-        // and the fits run a whole study in one configuration: tests/cli/test_bounces_cli.cpp and test_fit_cli.cpp
-        // run their reports on small tables.
-        const std::string name = e.path().stem().string();
-        if (name == "burnished_gold" || name == "rough_dielectric" || name == "fit_models") continue;
-        CHECK(sh(std::string(HILITE_EXE) + " run " + e.path().string() + " --shard 1/100000 -o " + (d / "x")) == 0);
-    }
 }
 
 TEST_CASE("cli::run --check refuses what a run refuses and writes nothing") {

@@ -1,10 +1,11 @@
 // Rows come from the rendered scene: a `measure --json` row carries every registry parameter that applies
 // to its scene, with the value as resolved (not as typed), and a swept roughness below the clamp is recorded
-// clamped in the experiment's rows.
+// clamped in the experiment's rows. In-process: the rows as `hilite measure` and `hilite run` make them.
 
 #include "hilite/scene/resolve.hpp"
 
-#include "support/run_hilite.hpp"
+#include "support/in_process.hpp"
+#include "support/temp_dir.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -13,26 +14,7 @@
 #include <sstream>
 
 namespace scene = hilite::scene;
-
-namespace {
-
-hilite_test::Result run(const std::string& args, bool stdoutOnly = false) {
-    return hilite_test::hilite(args, stdoutOnly);
-}
-
-}  // namespace
-
-namespace {
-
-/// The values the flags "--a 1 --b x" give, as the CLI would set them.
-scene::Values valuesOf(const std::string& flags) {
-    std::istringstream in(flags);
-    scene::Values v;
-    for (std::string flag, value; in >> flag >> value;) v.set(flag, value);
-    return v;
-}
-
-}  // namespace
+using namespace hilite::testing;
 
 TEST_CASE("measure --json rows carry every registry parameter that applies, as resolved") {
     const char* scenes[] = {
@@ -43,12 +25,12 @@ TEST_CASE("measure --json rows carry every registry parameter that applies, as r
         "--model phong --exponent 300 --light point --intensity 4 --light-distance 20 --distance 15",
         "--model ggx --roughness 0.1 --threshold 0.25 --fov 40 --boundary pixel --supersample 2",
     };
-    for (const char* flags : scenes) {
-        CAPTURE(flags);
-        const auto r = run(std::string("measure ") + flags + " --incidence 30 --size 64 --json", true);
-        REQUIRE(r.code == 0);
-        const auto row = nlohmann::json::parse(r.out);
-        const scene::Resolved resolved = scene::resolve(valuesOf(flags));
+    for (const char* args : scenes) {
+        CAPTURE(args);
+        const auto rows = measureJson(flags(std::string(args) + " --incidence 30 --size 64"));
+        REQUIRE(rows.size() == 1);
+        const auto& row = rows[0];
+        const scene::Resolved resolved = scene::resolve(flags(args));
         int applicable = 0;
         for (const scene::Param& p : scene::registry()) {
             if (p.column.empty()) continue;
@@ -64,12 +46,11 @@ TEST_CASE("measure --json rows carry every registry parameter that applies, as r
         CHECK(applicable >= 12);
     }
     // Values the user did not type but the scene rendered: the material's F0 stand-in, the anisotropic axes.
-    const auto iron =
-        nlohmann::json::parse(run("measure --model ggx --material iron --incidence 30 --size 64 --json", true).out);
+    const auto iron = measureJson(flags("--model ggx --material iron --incidence 30 --size 64")).at(0);
     CHECK(iron["fresnel"] == "schlick");
     CHECK(iron["f0"] == nlohmann::json::array({0.562, 0.565, 0.578}));
-    const auto aniso = nlohmann::json::parse(
-        run("measure --model ggx --roughness 0.1 --roughness-y 0.2 --incidence 30 --size 64 --json", true).out);
+    const auto aniso =
+        measureJson(flags("--model ggx --roughness 0.1 --roughness-y 0.2 --incidence 30 --size 64")).at(0);
     CHECK(aniso["roughness_y"].get<double>() == 0.2);
     CHECK(aniso["tangent_angle"].get<double>() == 0.0);
 }
@@ -91,9 +72,9 @@ values = [1e-9, 0.1]
 key = "light.incidence"
 values = [30]
 )");
-    const auto r = run("run " + exp + " -o " + (dir / "out"));
-    REQUIRE(r.code == 0);
-    CHECK(r.out.find("raised to 1e-07") != std::string::npos);
+    StderrCapture err;
+    runExperiment(exp, dir / "out");
+    CHECK(err.str().find("raised to 1e-07") != std::string::npos);
     std::ifstream in(dir / "out/results.jsonl");
     std::vector<nlohmann::json> rows;
     for (std::string line; std::getline(in, line);) rows.push_back(nlohmann::json::parse(line));

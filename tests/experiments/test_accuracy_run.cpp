@@ -1,8 +1,9 @@
-// The accuracy knobs from the command line: the accuracy flags of `measure` (--tolerance, --supersample, --renderer,
-// --crop) and `hilite run` with case axes, reference errors, timing and the Pareto summary; the shipped
-// accuracy_cost experiment at reduced size.
+// `hilite run` of accuracy experiments in-process (the experiments library, as src/cli/run_cmd.cpp calls it):
+// case axes, reference errors, timing and the Pareto summary; the shipped accuracy_cost experiment at reduced
+// size. The measure accuracy flags: tests/measurement/test_measure_flags.cpp.
 
-#include "support/run_hilite.hpp"
+#include "support/in_process.hpp"
+#include "support/temp_dir.hpp"
 
 #include <doctest/doctest.h>
 
@@ -15,7 +16,8 @@
 #include <string>
 
 namespace fs = std::filesystem;
-using namespace hilite_test;
+using namespace hilite::testing;
+using hilite_test::TempDir;
 
 namespace {
 
@@ -31,55 +33,7 @@ std::string readText(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("cli::measure accuracy flags: bad values, one line naming the flag and its range, exit 2") {
-    struct Case {
-        const char* args;
-        const char* mentions;
-    };
-    for (const Case c :
-         {Case{"--tolerance 0", "--tolerance: must be a finite number in [1e-05, 0.1]"},
-          Case{"--tolerance 0.5", "[1e-05, 0.1]"}, Case{"--tolerance nan", "--tolerance"},
-          Case{"--tolerance abc", "--tolerance"}, Case{"--tolerance 1e-3 --reference", "--tolerance"},
-          Case{"--supersample 0", "--supersample: must be a whole number in [1, 8]"}, Case{"--supersample 9", "[1, 8]"},
-          Case{"--renderer vulkan", "--renderer"}, Case{"--crop maybe", "--crop"}}) {
-        CAPTURE(c.args);
-        const Result r = hilite(std::string("measure --incidence 30 ") + c.args);
-        CHECK(r.code == 2);
-        CHECK(lines(r.out) == 1);
-        CHECK(r.out.find(c.mentions) != std::string::npos);
-    }
-}
-
-TEST_CASE("cli::measure --tolerance reports settings, error estimate and time") {
-    const Result r = hilite("measure --model ggx --roughness 0.02 --incidence 80 --tolerance 1e-3 --json", true);
-    REQUIRE(r.code == 0);
-    const auto j = nlohmann::json::parse(r.out);
-    CHECK(j["tolerance"].get<double>() == 1e-3);
-    CHECK(j["error_estimate"].get<double>() <= 1e-3);
-    CHECK(j["tolerance_met"].get<bool>());
-    CHECK(j["time_ms"].get<double>() > 0);
-    for (const char* k : {"size", "boundary", "supersample", "framing", "renderer"}) CHECK(j["settings"].contains(k));
-    CHECK(j["check"].contains("size"));
-    // The table form prints the same on a line of its own.
-    const Result t = hilite("measure --model ggx --roughness 0.1 --incidence 60 --tolerance 1e-2", true);
-    CHECK(t.code == 0);
-    CHECK(t.out.find("tolerance 0.01:") != std::string::npos);
-}
-
-TEST_CASE("cli::measure --renderer cpu and --supersample") {
-    const Result cpu = hilite("measure --incidence 60 --size 128 --renderer cpu --json", true);
-    const Result gl = hilite("measure --incidence 60 --size 128 --json", true);
-    REQUIRE(cpu.code == 0);
-    REQUIRE(gl.code == 0);
-    const auto c = nlohmann::json::parse(cpu.out), g = nlohmann::json::parse(gl.out);
-    CHECK(c["method"] == "cpu");
-    CHECK(std::abs(c["aspect"].get<double>() - g["aspect"].get<double>()) < 0.005);
-    const Result ss = hilite("measure --incidence 60 --size 64 --supersample 3 --json", true);
-    REQUIRE(ss.code == 0);
-    CHECK(nlohmann::json::parse(ss.out)["renders"].get<int>() >= 10);  // aiming + 9 jittered
-}
-
-TEST_CASE("cli::run case axes, reference errors, timing and the Pareto summary") {
+TEST_CASE("run case axes, reference errors, timing and the Pareto summary") {
     Dir d;
     std::ofstream(d / "acc.toml") << R"([experiment]
 name = "acc"
@@ -106,7 +60,7 @@ warmup = 1
 file = "pareto.png"
 targets = [1e-2, 1e-3]
 )";
-    REQUIRE(hilite("run " + (d / "acc.toml") + " -o " + (d / "out")).code == 0);
+    runExperiment(d / "acc.toml", d / "out");
     std::vector<nlohmann::json> rows;
     std::ifstream in(d / "out/results.jsonl");
     for (std::string l; std::getline(in, l);) rows.push_back(nlohmann::json::parse(l));
@@ -132,7 +86,7 @@ targets = [1e-2, 1e-3]
     CHECK(fs::exists(d / "out/pareto.dat"));
 }
 
-TEST_CASE("cli::run bad case axes: one line, exit 2") {
+TEST_CASE("run bad case axes: refused in one line") {
     Dir d;
     for (const std::string& bad :
          {std::string("[[sweep]]\nkey = \"s\"\ncases = [{ material = { model = \"ggx\" } }]\n"),  // no name
@@ -142,9 +96,9 @@ TEST_CASE("cli::run bad case axes: one line, exit 2") {
           std::string("[timing]\nrepeats = 0\n"), std::string("[pareto]\nfile = \"x.png\"\n")}) {
         CAPTURE(bad);
         std::ofstream(d / "bad.toml", std::ios::trunc) << bad;
-        const Result r = hilite("run " + (d / "bad.toml") + " -o " + (d / "bad"));
-        CHECK(r.code == 2);
-        CHECK(lines(r.out) == 1);
+        const std::string why = runRefusal(d / "bad.toml", d / "bad");
+        CAPTURE(why);
+        CHECK(oneLine(why));
     }
 }
 
@@ -165,7 +119,7 @@ TEST_CASE("experiments/accuracy_cost runs at reduced size") {
     REQUIRE(dropped > 5);
     Dir d;
     std::ofstream(d / "ac.toml") << out.str();
-    REQUIRE(hilite("run " + (d / "ac.toml") + " -o " + (d / "ac")).code == 0);
+    runExperiment(d / "ac.toml", d / "ac");
     const std::string md = readText(d / "ac/summary.md");
     CHECK(md.find("| 0.01 | ") != std::string::npos);
     CHECK(md.find("| 0.001 | ") != std::string::npos);

@@ -1,9 +1,12 @@
-// A measured material (--measured FILE.binary, a MERL table) where a model goes: the registry entry and its
-// rules, the row's columns, and the CPU twin's round trip: GGX tabulated by `hilite brdf tabulate`, measured
-// from the table, against the analytic GGX it came from (issue 18: "aspect within the table's stated
-// resolution error at 0-80 deg").
+// A measured material (--measured FILE.binary, a MERL table) where a model goes, in-process (the library as
+// `hilite measure`, `explain`, `brdf tabulate` and `run` call it): the registry entry and its rules, the row's
+// columns, and the CPU twin's round trip: GGX tabulated, measured from the table, against the analytic GGX it
+// came from (issue 18: "aspect within the table's stated resolution error at 0-80 deg").
 
-#include "support/run_hilite.hpp"
+#include "brdf/merl.hpp"
+#include "render/renderer.hpp"
+#include "support/in_process.hpp"
+#include "support/temp_dir.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -14,18 +17,32 @@
 #include <string>
 #include <vector>
 
+using namespace hilite;
+using namespace hilite::testing;
+
 namespace {
 
-const char* kGgx = "--model ggx --roughness 0.1 --geometry smith --fresnel schlick --f0 0.04";
+const std::string kGgx = "--model ggx --roughness 0.1 --geometry smith --fresnel schlick --f0 0.04";
 
-/// A GGX 0.1 Smith Schlick table, written once per test run.
+/// `hilite brdf tabulate ARGS -o FILE` (src/cli/brdf_cmd.cpp): the MERL table of the resolved terms.
+void tabulate(const std::string& args, const std::string& file) {
+    const brdf::Params p = scene::resolve(flags(args), scene::Purpose::Brdf).scene.brdf;
+    REQUIRE_FALSE(p.anisotropic());
+    std::ofstream(file, std::ios::binary) << brdf::merl::encode(brdf::merl::tabulate(p));
+}
+
+/// What `hilite explain --part effects` prints.
+std::string effects(const scene::Values& v) {
+    std::string out;
+    for (const auto& e : render::activeEffects(scene::resolve(v).scene)) out += e + "\n";
+    return out;
+}
+
+/// A GGX 0.1 Smith Schlick table, written once per test case.
 struct Table {
     hilite_test::TempDir dir{"hilite-measured"};
     std::string file = dir / "ggx.binary";
-    Table() {
-        const auto r = hilite_test::hilite(std::string("brdf tabulate ") + kGgx + " -o " + file);
-        REQUIRE(r.code == 0);
-    }
+    Table() { tabulate(kGgx, file); }
 };
 
 std::vector<nlohmann::json> rows(const std::string& out) {
@@ -40,19 +57,16 @@ std::vector<nlohmann::json> rows(const std::string& out) {
 
 TEST_CASE("measured: the row says measured:FILE, carries the path and none of the analytic terms") {
     Table t;
-    const auto r =
-        hilite_test::hilite("measure --measured " + t.file + " --incidence 30 --renderer cpu --size 64 --json", true);
-    REQUIRE(r.code == 0);
-    const auto row = nlohmann::json::parse(r.out);
+    const auto all = measureJson(flags("--measured " + t.file + " --incidence 30 --renderer cpu --size 64"));
+    REQUIRE(all.size() == 1);
+    const auto& row = all[0];
     CHECK(row["model"] == "measured:ggx.binary");
     CHECK(row["measured"] == t.file);
     for (const char* unused : {"roughness", "fresnel", "geometry", "diffuse", "f0", "exponent"}) {
         CAPTURE(unused);
         CHECK(!row.contains(unused));
     }
-    const auto e = hilite_test::hilite("explain --part effects --measured " + t.file);
-    REQUIRE(e.code == 0);
-    CHECK(e.out.find("measured MERL table " + t.file) != std::string::npos);
+    CHECK(effects(flags("--measured " + t.file)).find("measured MERL table " + t.file) != std::string::npos);
 }
 
 TEST_CASE("measured: refused with every other material flag, --bumps and for a bad file, in one line, exit 2") {
@@ -76,10 +90,10 @@ TEST_CASE("measured: refused with every other material flag, --bumps and for a b
     };
     for (const auto& c : cases) {
         CAPTURE(c.args);
-        const auto r = hilite_test::hilite("measure " + c.args + " --renderer cpu --size 64");
-        CHECK(r.code == 2);
-        CHECK(hilite_test::lines(r.out) == 1);
-        CHECK(r.out.find(c.message) != std::string::npos);
+        const std::string why = measureRefusal(flags(c.args + " --renderer cpu --size 64"));
+        CAPTURE(why);
+        CHECK(oneLine(why));
+        CHECK(why.find(c.message) != std::string::npos);
     }
 }
 
@@ -91,9 +105,9 @@ TEST_CASE(
     // theta_d bins), 2.4e-4, 3.2e-3 at 70, 80; the stated table_error 4e-4..1.3e-3 at 0-50, 0.165 at 60, 6e-3 and
     // 0.036 at 70, 80: actual / stated at most 0.15 for the aspect, 0.53 and 0.62 for the semi-axes (80 deg).
     Table t;
-    const std::string angles = " --incidence 0:80:10 --json";
-    const auto table = rows(hilite_test::hilite("measure --measured " + t.file + angles, true).out);
-    const auto model = rows(hilite_test::hilite(std::string("measure ") + kGgx + angles, true).out);
+    const std::string angles = " --incidence 0:80:10";
+    const auto table = measureJson(flags("--measured " + t.file + angles));
+    const auto model = measureJson(flags(kGgx + angles));
     REQUIRE(table.size() == 9);
     REQUIRE(model.size() == 9);
     for (size_t i = 0; i < 9; ++i) {
@@ -113,9 +127,9 @@ TEST_CASE(
     }
     // The double reference of the table (no pixels) agrees with the analytic model's where the region stays off
     // the horizon, within the table's error again.
-    const std::string few = " --incidence 0,20,40 --json";
-    const auto rt = rows(hilite_test::hilite("measure --reference --measured " + t.file + few, true).out);
-    const auto rm = rows(hilite_test::hilite(std::string("measure --reference ") + kGgx + few, true).out);
+    const std::string few = " --incidence 0,20,40";
+    const auto rt = measureJson(flags("--reference --measured " + t.file + few));
+    const auto rm = measureJson(flags(std::string("--reference ") + kGgx + few));
     REQUIRE(rt.size() == 3);
     REQUIRE(rm.size() == 3);
     for (size_t i = 0; i < 3; ++i) {
@@ -130,9 +144,8 @@ TEST_CASE("measured: the GL measurement of the table agrees with the CPU twin's 
     // --renderer cpu 1.8e-10, 5.4e-7, 1.7e-6, 3.2e-6, 1.9e-6 at 0/20/40/60/80 deg (float texture and float angles
     // against doubles).
     Table t;
-    const std::string args = "measure --measured " + t.file + " --incidence 0,20,40,60,80 --json --renderer ";
-    const auto gl = rows(hilite_test::hilite(args + "gl", true).out),
-               cpu = rows(hilite_test::hilite(args + "cpu", true).out);
+    const std::string args = "--measured " + t.file + " --incidence 0,20,40,60,80 --renderer ";
+    const auto gl = measureJson(flags(args + "gl")), cpu = measureJson(flags(args + "cpu"));
     REQUIRE(gl.size() == 5);
     REQUIRE(cpu.size() == 5);
     for (size_t i = 0; i < 5; ++i) {
@@ -145,8 +158,7 @@ TEST_CASE("measured: the GL measurement of the table agrees with the CPU twin's 
 
 TEST_CASE("measured: material.measured sweeps in an experiment like any key, paths beside the experiment file") {
     Table t;
-    REQUIRE(hilite_test::hilite("brdf tabulate --model beckmann --roughness 0.2 -o " + (t.dir / "beck.binary")).code ==
-            0);
+    tabulate("--model beckmann --roughness 0.2", t.dir / "beck.binary");
     {
         std::ofstream(t.dir / "sweep.toml")
             << "[experiment]\nname = \"measured_sweep\"\ntitle = \"t\"\ndescription = \"d\"\n"
@@ -154,8 +166,7 @@ TEST_CASE("measured: material.measured sweeps in an experiment like any key, pat
                "[[sweep]]\nkey = \"material.measured\"\nvalues = [\"ggx.binary\", \"beck.binary\"]\n"
                "[[sweep]]\nkey = \"light.incidence\"\nvalues = [0, 40]\n";
     }
-    const auto r = hilite_test::hilite("run " + (t.dir / "sweep.toml") + " -o " + (t.dir / "out"));
-    REQUIRE(r.code == 0);
+    runExperiment(t.dir / "sweep.toml", t.dir / "out");
     std::ifstream in(t.dir / "out/results.jsonl");
     std::stringstream all;
     all << in.rdbuf();

@@ -1,0 +1,71 @@
+// `hilite run`'s checks in-process (the experiments library as src/cli/run_cmd.cpp calls it): bad experiment
+// files, GL backends and shards are refused before anything is written; every shipped experiment validates and
+// runs a shard. The run end to end (rows, resume after SIGKILL, progress, merge, --check's words):
+// tests/cli/test_run.cpp.
+
+#include "support/in_process.hpp"
+#include "support/temp_dir.hpp"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using namespace hilite;
+using namespace hilite::testing;
+
+namespace {
+
+struct Dir : hilite_test::TempDir {
+    Dir() : TempDir("hilite-run-checks") {}
+};
+
+/// The refusal of `hilite run EXPERIMENT [--shard SHARD] [--gl-backend BACKEND] -o OUT`; "" when it runs.
+std::string refusal(const std::string& experiment, const std::string& out, const std::string& shard = "",
+                    const std::string& backend = "") {
+    return inputError([&] {
+        experiments::RunOptions o;
+        experiments::parseShard(shard, o.shardK, o.shardN);
+        o.experiment = experiment, o.out = out, o.backend = backend;
+        experiments::runExperiment(o);
+    });
+}
+
+}  // namespace
+
+TEST_CASE("run bad experiment files are refused in one line, nothing written") {
+    Dir d;
+    std::ofstream(d / "bad.toml") << "[[sweep]]\nkey = \"material.rougness\"\nvalues = [0.1]\n";
+    CHECK(oneLine(refusal(d / "bad.toml", d / "bad")));
+    std::ofstream(d / "bad2.toml") << "[[sweep]]\nkey = \"light.incidence\"\nvalues = [100]\n";
+    CHECK(oneLine(refusal(d / "bad2.toml", d / "bad2")));
+    CHECK_FALSE(fs::exists(d / "bad2/results.csv"));
+    CHECK_FALSE(fs::exists(d / "bad2"));  // not even the output folder
+    // An unknown GL backend is refused before anything is written (it was found at the first render).
+    CHECK(oneLine(refusal("eccentricity", d / "gb", "", "bogus")));
+    CHECK_FALSE(fs::exists(d / "gb"));
+    for (const char* shard : {"1/2x", "3/2", "0/1", "1.5/2", "x"}) {  // a malformed --shard is refused, not truncated
+        CAPTURE(shard);
+        CHECK(oneLine(refusal("eccentricity", d / "sh", shard)));
+        CHECK_FALSE(fs::exists(d / "sh"));
+    }
+}
+
+TEST_CASE("experiments shipped in experiments/ all validate") {
+    for (const auto& e : fs::directory_iterator(fs::path(HILITE_SOURCE_DIR_STR) / "experiments")) {
+        if (e.path().extension() != ".toml") continue;
+        CAPTURE(e.path().string());
+        Dir d;
+        // --check: the whole file, every configuration and the folder, nothing written.
+        CHECK(runRefusal(e.path().string(), d / "c", true) == "");
+        CHECK(!fs::exists(d / "c"));
+        // --shard 1/100000 measures at most one configuration and writes every report from it. The bounce studies
+        // and the fits run a whole study in one configuration: tests/experiments/test_bounces.cpp and test_fit.cpp
+        // run their reports on small tables.
+        const std::string name = e.path().stem().string();
+        if (name == "burnished_gold" || name == "rough_dielectric" || name == "fit_models") continue;
+        CHECK(refusal(e.path().string(), d / "x", "1/100000") == "");
+    }
+}
