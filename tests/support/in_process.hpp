@@ -124,7 +124,7 @@ inline std::vector<nlohmann::json> measureJson(const scene::Values& v) {
     std::vector<nlohmann::json> rows;
     for (double angle : r.angles) {
         r.scene.light.incidenceDeg = angle;
-        rows.push_back(s.measureOne(r));
+        rows.push_back(measurement::toJson(s.measureOne(r)));
     }
     return rows;
 }
