@@ -16,6 +16,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -106,7 +108,7 @@ TEST_CASE("brdf albedo --multiscatter kulla-conty: the white furnace, single sca
     REQUIRE(single.size() == 2);
     REQUIRE(ms.size() == 2);
     CHECK(single[0].x == doctest::Approx(0.3068528).epsilon(1e-6));  // 1 - ln 2
-    for (const auto& line : ms) CHECK(std::abs(line.y - 1.0) < 1e-3);
+    for (const auto& line : ms) CHECK_NEAR(line.y, 1.0, 1e-3);
     const std::string explain = effects("--roughness 1 --geometry smith --multiscatter kulla-conty");
     CHECK(explain.find("MS_KullaConty") != std::string::npos);
     CHECK(explain.find("Kulla & Conty 2017") != std::string::npos);
@@ -228,7 +230,7 @@ TEST_CASE("brdf tabulate: GGX 0.1 smith schlick as a MERL table equal to brdf::e
                                    wi, wo);
                 if (wi.z <= 0 || wo.z <= 0) continue;
                 const dvec3 want = brdf::evaluate(p, wi, wo), got = m.evaluate(wi, wo, merl::Interpolation::Nearest);
-                for (int c = 0; c < 3; ++c) CHECK(std::abs(got[c] - want[c]) <= 2.3e-16 * want[c]);
+                for (int c = 0; c < 3; ++c) CHECK_NEAR(got[c], want[c], 2.3e-16 * want[c]);
                 ++checked;
             }
     CHECK(checked > 30);

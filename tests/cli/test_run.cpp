@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -95,7 +97,7 @@ TEST_CASE("cli::run a small experiment writes the expected rows") {
     double previous = -1;
     for (const auto& r : csv.rows) {
         const double aspect = std::stod(r.at("aspect")), ecc = std::stod(r.at("eccentricity"));
-        if (r.at("model") == "phong") CHECK(std::abs(aspect - 1.0) < 0.005);
+        if (r.at("model") == "phong") CHECK_NEAR(aspect, 1.0, 0.005);
         if (r.at("model") == "ggx") {
             CHECK(ecc > previous);
             previous = ecc;

@@ -12,6 +12,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -61,9 +63,9 @@ TEST_CASE("measure --brdf measures as the built-in model, with an error estimate
         CHECK(x["framing"] == "blind");
         CHECK(x["error_estimate_from"] == "resolution convergence (no CPU twin for .brdf)");
         CHECK(x["error_estimate"]["minor_deg"].get<double>() < 0.01);
-        CHECK(std::abs(x["aspect"].get<double>() - y["aspect"].get<double>()) < 0.002);
-        CHECK(std::abs(x["major_deg"].get<double>() / y["major_deg"].get<double>() - 1) < 0.005);
-        CHECK(std::abs(x["minor_deg"].get<double>() / y["minor_deg"].get<double>() - 1) < 0.005);
+        CHECK_NEAR(x["aspect"].get<double>(), y["aspect"].get<double>(), 0.002);
+        CHECK_NEAR(x["major_deg"].get<double>() / y["major_deg"].get<double>(), 1, 0.005);
+        CHECK_NEAR(x["minor_deg"].get<double>() / y["minor_deg"].get<double>(), 1, 0.005);
         CHECK_FALSE(y.contains("error_estimate"));
     }
     CHECK(rows == 3);

@@ -11,7 +11,9 @@
 #include "support/temp_dir.hpp"
 
 #include <doctest/doctest.h>
+
 #include <nlohmann/json.hpp>
+#include "support/near.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -98,7 +100,7 @@ TEST_CASE("fit: each built-in model's table is fitted back to its model (rank 1)
                            }());
         CHECK(own["rank"] == 1);
         const double got = own["params"][c.param].get<double>();
-        CHECK(std::abs(got / c.value - 1) < 0.01);
+        CHECK_NEAR(got / c.value, 1, 0.01);
         for (const auto& [m, f] : by)
             CHECK(f["params"].contains(m == "phong" || m == "blinn" ? "exponent" : "roughness"));
     }
@@ -119,7 +121,7 @@ TEST_CASE("fit: Phong fitted to a GGX table leaves an aspect residual that grows
     const auto& res = phong["aspect_residual"];
     REQUIRE(res.size() == 9);
     MESSAGE("phong's aspect residual, 0..80 deg: " << res.dump());
-    CHECK(std::abs(res[0].get<double>()) < 1e-3);  // round at normal incidence, both
+    CHECK_NEAR(res[0].get<double>(), 0.0, 1e-3);  // round at normal incidence, both
     for (size_t i = 1; i < res.size(); ++i) CHECK(res[i].get<double>() > res[i - 1].get<double>());
     // Phong stays round while GGX narrows towards cos(theta_i): at 80 deg the residual is most of 1 - cos.
     CHECK(res[8].get<double>() > 0.5 * (1 - std::cos(80 * M_PI / 180)));
@@ -190,7 +192,7 @@ TEST_CASE("fit: a .brdf target (framed blind, no twin) fits back to its model") 
     CHECK(fits[0]["model"] == "ggx");
     CHECK(fits[0]["rank"] == 1);
     CHECK(fits[0]["target"] == "brdf:" + file);
-    CHECK(std::abs(fits[0]["params"]["roughness"].get<double>() / 0.1 - 1) < 0.01);  // measured: 0.100016
+    CHECK_NEAR(fits[0]["params"]["roughness"].get<double>() / 0.1, 1, 0.01);  // measured: 0.100016
 }
 
 TEST_CASE("fit: --fit-anisotropy recovers both roughnesses, --fit-f0 Schlick's F0") {
@@ -202,10 +204,10 @@ TEST_CASE("fit: --fit-anisotropy recovers both roughnesses, --fit-f0 Schlick's F
     // at 0.148 x 0.139), and F0 0.49989 with roughness 0.100009.
     const auto a = jsonLines(fit("--model ggx --roughness 0.1 --roughness-y 0.2" + sweep, "", aniso));
     REQUIRE(a.size() == 1);
-    CHECK(std::abs(a[0]["params"]["roughness"].get<double>() / 0.1 - 1) < 0.01);
-    CHECK(std::abs(a[0]["params"]["roughness_y"].get<double>() / 0.2 - 1) < 0.01);
+    CHECK_NEAR(a[0]["params"]["roughness"].get<double>() / 0.1, 1, 0.01);
+    CHECK_NEAR(a[0]["params"]["roughness_y"].get<double>() / 0.2, 1, 0.01);
     const auto f = jsonLines(fit("--model ggx --roughness 0.1 --fresnel schlick --f0 0.5" + sweep, "", f0));
     REQUIRE(f.size() == 1);
-    CHECK(std::abs(f[0]["params"]["roughness"].get<double>() / 0.1 - 1) < 0.01);
-    CHECK(std::abs(f[0]["params"]["f0"].get<double>() / 0.5 - 1) < 0.01);
+    CHECK_NEAR(f[0]["params"]["roughness"].get<double>() / 0.1, 1, 0.01);
+    CHECK_NEAR(f[0]["params"]["f0"].get<double>() / 0.5, 1, 0.01);
 }

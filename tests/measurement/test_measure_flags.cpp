@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/near.hpp"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -188,7 +190,7 @@ TEST_CASE("measure --renderer cpu and --supersample") {
     const auto c = measureJson(flags("--incidence 60 --size 128 --renderer cpu")).at(0);
     const auto g = measureJson(flags("--incidence 60 --size 128")).at(0);
     CHECK(c["method"] == "cpu");
-    CHECK(std::abs(c["aspect"].get<double>() - g["aspect"].get<double>()) < 0.005);
+    CHECK_NEAR(c["aspect"].get<double>(), g["aspect"].get<double>(), 0.005);
     const auto ss = measureJson(flags("--incidence 60 --size 64 --supersample 3")).at(0);
     CHECK(ss["renders"].get<int>() >= 10);  // aiming + 9 jittered
 }

@@ -9,7 +9,9 @@
 #include "support/temp_dir.hpp"
 
 #include <doctest/doctest.h>
+
 #include <nlohmann/json.hpp>
+#include "support/near.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -121,7 +123,7 @@ TEST_CASE(
             CAPTURE(a);
             CAPTURE(b);
             CAPTURE(e);
-            CHECK(std::abs(a - b) <= e);
+            CHECK_NEAR(a, b, e);
         }
         CHECK(!model[i].contains("table_error"));  // an analytic model has no table
     }
@@ -134,8 +136,8 @@ TEST_CASE(
     REQUIRE(rm.size() == 3);
     for (size_t i = 0; i < 3; ++i) {
         CAPTURE(rm[i]["incidence_deg"]);
-        CHECK(std::abs(double(rt[i]["aspect"]) - double(rm[i]["aspect"])) <= double(rt[i]["table_error"]["aspect"]));
-        CHECK(std::abs(double(rt[i]["aspect"]) - double(rm[i]["aspect"])) < 1e-4);
+        CHECK_NEAR(double(rt[i]["aspect"]), double(rm[i]["aspect"]), double(rt[i]["table_error"]["aspect"]));
+        CHECK_NEAR(double(rt[i]["aspect"]), double(rm[i]["aspect"]), 1e-4);
     }
 }
 
@@ -152,7 +154,7 @@ TEST_CASE("measured: the GL measurement of the table agrees with the CPU twin's 
         CAPTURE(gl[i]["incidence_deg"]);
         CHECK(gl[i]["method"] == "gl");
         CHECK(gl[i]["flags"] == cpu[i]["flags"]);
-        CHECK(std::abs(double(gl[i]["aspect"]) - double(cpu[i]["aspect"])) < 1e-3);
+        CHECK_NEAR(double(gl[i]["aspect"]), double(cpu[i]["aspect"]), 1e-3);
     }
 }
 
