@@ -6,6 +6,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <ostream>
@@ -125,13 +126,29 @@ Context::Context(Backend backend, int device) {
         throw SystemError("OpenGL " + m_info.version + " from " + toString(m_info.backend) + ": need 3.3 or newer");
 }
 
-Context::~Context() = default;
+namespace {
+thread_local const Context* t_current = nullptr;     ///< the Context last made current on this thread
+std::atomic<const Context*> g_entryPoints{nullptr};  ///< whose entry points glad holds (they are per process)
+}  // namespace
+
+Context::~Context() {
+    if (t_current == this) t_current = nullptr;
+    const Context* self = this;
+    g_entryPoints.compare_exchange_strong(self, nullptr);
+}
 
 void Context::makeCurrent() {
+    t_current = nullptr;  // until both steps succeed
     m_impl->makeCurrent();
     // The GL pointers are per process: reload them for this context's library.
     if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(m_impl->loader())))
         throw SystemError(std::string("cannot load OpenGL entry points through ") + toString(m_info.backend));
+    t_current = this;
+    g_entryPoints = this;
+}
+
+void Context::ensureCurrent() {
+    if (t_current != this || g_entryPoints != this) makeCurrent();
 }
 
 std::vector<Backend> Context::available() {

@@ -61,7 +61,11 @@ public:
     Context& operator=(const Context&) = delete;
 
     const ContextInfo& info() const { return m_info; }
+    /// Makes the context current on this thread and loads its GL entry points.
     void makeCurrent();
+    /// makeCurrent() unless this context was the last one made current on this thread and the entry points
+    /// loaded are its own (another Context made since, e.g. an experiment's, makes it needed again).
+    void ensureCurrent();
 
     /// The backends that can create a context on this machine (each tried once, then released).
     static std::vector<Backend> available();

@@ -27,6 +27,7 @@ render::Renderer& Session::rendererFor(const scene::Resolved& r) {
         m_context = std::make_unique<gl::Context>(scene::backendOf(backend), r.gpu);
         m_renderer = std::make_unique<render::Renderer>(*m_context);
     }
+    m_context->ensureCurrent();  // another context made in this process since (an experiment's) is not ours
     m_renderer->setShaderTimeLimit(r.shaderTimeoutS);
     return *m_renderer;
 }

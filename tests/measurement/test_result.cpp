@@ -115,3 +115,22 @@ TEST_CASE("measurement::toJson keeps the flags' order and writes non-finite shap
     CHECK(j["flags"] == nlohmann::json::array({"under_resolved", "clipped"}));
     CHECK(j["aspect"].is_null());
 }
+
+TEST_CASE("measurement::Session measures in its own context after another one was made current") {
+    scene::Values v;
+    v.set("model", "ggx");
+    v.set("incidence", "60");
+    v.set("size", "128");
+    const scene::Resolved r = scene::resolve(v);
+    measurement::Session session;
+    const double before = session.measureOne(r).shape().aspect;
+    {
+        // Another context, made current and then destroyed, as an experiment run in the same process does; the
+        // session is not told (no makeCurrent() call).
+        scene::Values other = v;
+        other.set("incidence", "30");
+        measurement::Session second;
+        CHECK(second.measureOne(scene::resolve(other)).shape().aspect > before);
+    }
+    CHECK(session.measureOne(r).shape().aspect == before);
+}

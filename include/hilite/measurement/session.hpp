@@ -43,7 +43,8 @@ public:
     /// The backend of the session's context; nullopt before the first GL render.
     std::optional<gl::Backend> glBackend() const;
     /// Makes the session's context current again (after another context, e.g. an experiment run's, was
-    /// made current in this process); nothing before the first GL render.
+    /// made current in this process); nothing before the first GL render. measure(), measureOne() and
+    /// rendererFor() do it themselves; this is for a caller that renders with the renderer directly.
     void makeCurrent();
 
 private:
