@@ -6,8 +6,6 @@
 
 #include <cmath>
 #include <iomanip>
-#include <map>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -97,16 +95,6 @@ void makeEs(const Params& p, EnergyTables& t, const std::shared_ptr<const Energy
             throw std::invalid_argument("the specular albedo is 1 at every angle: nothing is left for the body");
 }
 
-/// The cache key: every parameter the tables depend on, in full precision.
-std::string keyOf(const Params& p) {
-    Params q = p;
-    q.diffuse = Diffuse::None;  // the albedo rho and sigma do not enter the tables
-    std::ostringstream s;
-    s << std::setprecision(17) << q << " coupled=" << (p.diffuse == Diffuse::Coupled)
-      << " spectral_step=" << (p.spectrum ? p.spectrum->size() : 0);
-    return s.str();
-}
-
 }  // namespace
 
 double energyTableMu(int i) {
@@ -141,21 +129,13 @@ std::shared_ptr<const EnergyTables> energyTables(const Params& p) {
     const bool ms = p.multiscatter != Multiscatter::None, coupled = p.diffuse == Diffuse::Coupled;
     if (!ms && !coupled) return nullptr;
     if (const std::string why = energyRefusal(p); !why.empty()) throw std::invalid_argument(why);
-    static std::mutex mutex;
-    static std::map<std::string, std::shared_ptr<const EnergyTables>> cache;
-    const std::string key = keyOf(p);
-    {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (auto it = cache.find(key); it != cache.end()) return it->second;
-    }
     auto t = std::make_shared<EnergyTables>();
     if (ms) makeE(p, *t);
     if (coupled) {
         auto withE = ms ? std::make_shared<const EnergyTables>(*t) : nullptr;
         makeEs(p, *t, withE);
     }
-    std::lock_guard<std::mutex> lock(mutex);
-    return cache.emplace(key, t).first->second;
+    return t;
 }
 
 std::string describeEnergy(const Params& p) {

@@ -47,8 +47,8 @@ struct EnergyTables {
 /// diffuse an isotropic built-in lobe. resolve() puts the flag in front.
 std::string energyRefusal(const Params& p);
 
-/// The tables p's terms need (kulla-conty: E, coupled: E_s), made once per BRDF and cached: ~64 albedo
-/// integrals per table (2 with both). std::invalid_argument with the reason when p cannot have them (see
+/// The tables p's terms need (kulla-conty: E, coupled: E_s): ~64 albedo integrals per table (2 with both), made
+/// on every call (scene::resolve keeps them per BRDF, keyed on its registry values: scene::energyKey). std::invalid_argument with the reason when p cannot have them (see
 /// energyRefusal, and a specular albedo above 1, which leaves the body a negative share).
 std::shared_ptr<const EnergyTables> energyTables(const Params& p);
 

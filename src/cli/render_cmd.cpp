@@ -73,9 +73,9 @@ int runRender(const RenderFlags& f) {
         io::writePng(f.png, img, e);
     }
     if (!f.pfm.empty()) io::writePfm(f.pfm, img);
-    std::cout << "rendered " << width << "x" << height << " " << (r.view == scene::View::Photo ? "photo" : "measure")
-              << " view: " << scene << " peak=" << peak << " [" << context.info().renderer << ", "
-              << gl::toString(context.info().backend) << "]\n";
+    std::cout << "rendered " << width << "x" << height << " " << scene::toString(r.view) << " view: " << scene
+              << " peak=" << peak << " [" << context.info().renderer << ", " << gl::toString(context.info().backend)
+              << "]\n";
     return 0;
 }
 

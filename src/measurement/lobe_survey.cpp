@@ -1,6 +1,8 @@
 #include "measurement/lobe_survey.hpp"
 
+#include "core/text.hpp"
 #include "hilite/brdf/evaluate.hpp"
+#include "hilite/scene/registry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -69,33 +71,32 @@ std::pair<dvec3, double> climb(const Lobe& lobe, const dvec3& start, double unti
     return {chart.direction(q.x, q.y), best};
 }
 
-std::string keyOf(const render::Scene& s, double frac);
 LobeSurvey scan(const render::Scene& scene);
+
+/// The last result of a survey of a scene, per thread, keyed on the scene's registry values (scene::sceneKey).
+/// It holds the scene, so a table the key names by its address stays alive (and its address unused) meanwhile.
+struct LastSurvey {
+    std::string key;
+    render::Scene scene;
+    LobeSurvey survey;
+    template <class Make>
+    const LobeSurvey& get(const render::Scene& s, std::string k, Make make) {
+        if (k != key) {
+            survey = make();
+            key = std::move(k);
+            scene = s;
+        }
+        return survey;
+    }
+};
 
 /// scan(), kept per thread for the last scene: the GL path, the reference and the row ask for the same lobe,
 /// framed about the mirror direction or about its peak (a directional light's lobe is the same either way).
 LobeSurvey scannedLobe(const render::Scene& scene) {
     render::Scene key = scene;
     if (key.light.distant()) key.light.chartCenter.reset();
-    thread_local std::string lastKey;
-    thread_local LobeSurvey last;
-    std::string k = keyOf(key, 0.0);
-    if (k != lastKey) {
-        last = scan(scene);
-        lastKey = std::move(k);
-    }
-    return last;
-}
-
-std::string keyOf(const render::Scene& s, double frac) {
-    std::ostringstream key;
-    key.precision(17);
-    key << s << " type=" << int(s.light.type) << " radius=" << s.light.radius << " angle=" << s.light.angleDeg
-        << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get() << " measured=" << s.brdf.measured.get()
-        << " spectrum=" << s.brdf.spectrum.get() << " frac=" << frac;
-    if (s.light.chartCenter)
-        key << " centre=" << s.light.chartCenter->x << "," << s.light.chartCenter->y << "," << s.light.chartCenter->z;
-    return key.str();
+    thread_local LastSurvey last;
+    return last.get(key, scene::sceneKey(key), [&] { return scan(scene); });
 }
 
 /// Union-find over the grid's samples.
@@ -310,14 +311,8 @@ std::vector<analysis::ChartBox> LobeSurvey::boxes() const {
 
 LobeSurvey surveyLobe(const render::Scene& scene, double frac) {
     render::requireTwin(scene, "the hemisphere survey");
-    thread_local std::string lastKey;
-    thread_local LobeSurvey last;
-    std::string key = keyOf(scene, frac);
-    if (key != lastKey) {
-        last = survey(scene, frac);
-        lastKey = std::move(key);
-    }
-    return last;
+    thread_local LastSurvey last;
+    return last.get(scene, scene::sceneKey(scene) + ";frac=" + exactText(frac), [&] { return survey(scene, frac); });
 }
 
 }  // namespace hilite::measurement

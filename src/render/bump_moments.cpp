@@ -7,15 +7,6 @@
 
 namespace hilite::render {
 
-const char* toString(BumpFilter f) {
-    switch (f) {
-        case BumpFilter::Auto: return "auto";
-        case BumpFilter::Supersample: return "supersample";
-        case BumpFilter::Moments: return "moments";
-    }
-    return "?";
-}
-
 std::ostream& operator<<(std::ostream& os, BumpFilter f) { return os << toString(f); }
 
 void sunFrame(const dvec3& wi, dvec3& t1, dvec3& t2) {

@@ -40,16 +40,6 @@ std::ostream& operator<<(std::ostream& os, const Scene& s) {
     return os << " irradiance=" << l.irradiance;
 }
 
-const char* toString(LightType t) {
-    switch (t) {
-        case LightType::Directional: return "directional";
-        case LightType::Point: return "point";
-        case LightType::Sphere: return "sphere";
-        case LightType::Disk: return "disk";
-    }
-    return "?";
-}
-
 namespace {
 
 /// The light's block of shade.frag, named by its define; "" for the directional light (the default code).

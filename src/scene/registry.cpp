@@ -3,6 +3,7 @@
 #include "brdf/materials.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
+#include "brdf/spectral.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
 #include "hilite/brdf/params.hpp"
@@ -12,6 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <type_traits>
 #include <unordered_map>
 
 namespace hilite::scene {
@@ -58,6 +61,131 @@ bool tolerance(const Resolved& r) { return r.tolerance > 0; }
 
 json rgb(const dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
+// ---- Binding a parameter to its field ----
+// `get` is one generic accessor, [](auto& r) -> auto& { return r.scene.brdf.exponent; }, for the write and the
+// read: a misspelt field is a compile error, and the default is read from a default-constructed Resolved.
+
+template <class T>
+T parseAs(const std::string& t) {  // the text check() has passed
+    if constexpr (std::is_same_v<T, dvec3>) {
+        const auto parts = split(t, ',');
+        dvec3 v;
+        for (int c = 0; c < 3; ++c) v[c] = *parseNumber(parts[parts.size() == 1 ? 0 : size_t(c)]);
+        return v;
+    } else if constexpr (std::is_same_v<T, bool>) {
+        return t == "true";
+    } else if constexpr (std::is_same_v<T, std::string>) {
+        return t;
+    } else {
+        return T(*parseNumber(t));
+    }
+}
+
+template <class T>
+std::string printAs(const T& v, bool exact) {
+    if constexpr (std::is_same_v<T, dvec3>) {
+        if (v.y == v.x && v.z == v.x) return printAs(v.x, exact);
+        return printAs(v.x, exact) + "," + printAs(v.y, exact) + "," + printAs(v.z, exact);
+    } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+        return v ? printAs(*v, exact) : "";
+    } else if constexpr (std::is_same_v<T, bool>) {
+        return v ? "true" : "false";
+    } else if constexpr (std::is_same_v<T, std::string>) {
+        return v;
+    } else if constexpr (std::is_same_v<T, double>) {
+        return exact ? exactText(v) : fmt(v);
+    } else if constexpr (std::is_enum_v<T>) {
+        return toString(v);
+    } else {
+        return std::to_string(v);
+    }
+}
+
+template <class Get>
+using FieldOf = std::decay_t<decltype(std::declval<Get>()(std::declval<Resolved&>()))>;
+
+/// The field's value printed (and, with `withDefault`, the entry's default); resolve() writes it itself.
+template <class Get>
+void bindRead(Param& e, Get get, bool withDefault = true) {
+    e.read = [get](const Resolved& r, bool exact) { return printAs(get(r), exact); };
+    if (withDefault) e.def = e.read(Resolved{}, false);
+}
+
+/// The field written from the checked text and printed back; its default is the struct's.
+template <class Get>
+void bind(Param& e, Get get) {
+    e.write = [get](Resolved& r, const std::string& t) { get(r) = parseAs<FieldOf<Get>>(t); };
+    bindRead(e, get);
+}
+
+/// A field whose value-initialized state (0, none) means `word`, the entry's automatic word.
+template <class Get>
+void bindAutomatic(Param& e, Get get, const char* word) {
+    using T = FieldOf<Get>;
+    e.automatic = word;
+    e.write = [get, word](Resolved& r, const std::string& t) {
+        if (t == word) get(r) = T{};
+        else if constexpr (std::is_same_v<T, std::optional<double>>) get(r) = *parseNumber(t);
+        else get(r) = parseAs<T>(t);
+    };
+    e.read = [get, word](const Resolved& r, bool exact) {
+        return get(r) == T{} ? std::string(word) : printAs(get(r), exact);
+    };
+    e.def = e.read(Resolved{}, false);
+}
+
+/// A field that is `unset` when the parameter is not given (default "").
+template <class Get, class T>
+void bindUnset(Param& e, Get get, T unset) {
+    e.write = [get, unset](Resolved& r, const std::string& t) { get(r) = t.empty() ? unset : parseAs<T>(t); };
+    e.read = [get, unset](const Resolved& r, bool exact) { return get(r) == unset ? "" : printAs(get(r), exact); };
+    e.def = e.read(Resolved{}, false);
+}
+
+/// A choice: the names are the table's, the field the value of the name (check() refused any other name).
+template <class Get, class E, size_t N>
+void bindChoice(Param& e, Get get, const Named<E> (&table)[N]) {
+    e.choices = namesIn(table);
+    e.write = [get, &table](Resolved& r, const std::string& t) { get(r) = parseIn(table, t).value(); };
+    e.read = [get, &table](const Resolved& r, bool) { return std::string(nameIn(table, get(r))); };
+    e.def = e.read(Resolved{}, false);
+}
+
+/// A brdf enum: its names, parse and toString come from one array each (brdf/params.cpp).
+template <class Get, class Parse>
+void bindChoice(Param& e, Get get, std::vector<std::string> names, Parse parse) {
+    e.choices = std::move(names);
+    e.write = [get, parse](Resolved& r, const std::string& t) { get(r) = parse(t).value(); };
+    e.read = [get](const Resolved& r, bool) { return std::string(brdf::toString(get(r))); };
+    e.def = e.read(Resolved{}, false);
+}
+
+// The choices whose field is a bool: their spellings, once.
+constexpr Named<bool> kSpectralFresnel[] = {{true, "table"}, {false, "exact"}};
+constexpr Named<bool> kBumps[] = {{false, "none"}, {true, "explicit"}};
+constexpr Named<bool> kBoundaries[] = {{true, "subpixel"}, {false, "pixel"}};
+constexpr Named<bool> kRenderers[] = {{false, "gl"}, {true, "cpu"}};
+constexpr Named<bool> kCrops[] = {{true, "on"}, {false, "off"}};
+
+std::string sizeText(int w, int h) { return w == h ? std::to_string(w) : std::to_string(w) + "x" + std::to_string(h); }
+
+/// A loaded table by its object: the caches that key on it hold the scene (and so the table) while the key
+/// lives, so no other table can take its address meanwhile. "" for none.
+std::string identity(const void* p) {
+    if (!p) return "";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "@%p", p);
+    return buf;
+}
+
+/// An NDF table by its contents (a small table; the energy cache outlives the scenes it was made for).
+std::string tableText(const brdf::NdfTable* t) {
+    if (!t) return "";
+    std::string s = t->file;
+    for (size_t i = 0; i < t->theta.size(); ++i) s += " " + exactText(t->theta[i]) + ":" + exactText(t->D[i]);
+    return s;
+}
+
 const char* kModelHelp =
     "specular model: phong | phong-classic (reflection lobes) | retro (retroreflective lobe about the light) | "
     "blinn | gaussian | beckmann | ggx | tabulated (microfacet; tabulated: --ndf-table) | none (diffuse only)";
@@ -70,17 +198,32 @@ std::vector<Param> build() {
     const std::string materials = join(brdf::materialNames());
 
     // ---- [material] ----
-    add({"model", T::Material, K::Choice, "ggx", 0, 0, false, false, brdf::modelNames(), "", kModelHelp, "every scene",
-         nullptr, "model", [](const Resolved& r) -> json {
+    add({"model",
+         T::Material,
+         K::Choice,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
+         kModelHelp,
+         "every scene",
+         nullptr,
+         "model",
+         [](const Resolved& r) -> json {
              if (r.scene.brdfFile) return r.scene.brdfFile->path.substr(r.scene.brdfFile->path.rfind('/') + 1);
              if (r.scene.brdf.measured)
                  return "measured:" + r.scene.brdf.measured->path.substr(r.scene.brdf.measured->path.rfind('/') + 1);
              return brdf::toString(r.scene.brdf.model);
          }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.model; }, brdf::modelNames(), brdf::parseModel);
     add({"exponent",
          T::Material,
          K::Number,
-         "1000",
+         "",
          brdf::kMinExponent,
          brdf::kMaxExponent,
          false,
@@ -92,10 +235,12 @@ std::vector<Param> build() {
          usesExponent,
          "exponent",
          [](const Resolved& r) -> json { return r.scene.brdf.exponent; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.exponent; });
     add({"roughness",
          T::Material,
          K::Number,
-         "0.1",
+         "",
          brdf::kMinRoughness,
          brdf::kMaxRoughness,
          false,
@@ -108,6 +253,8 @@ std::vector<Param> build() {
          usesRoughness,
          "roughness",
          [](const Resolved& r) -> json { return r.scene.brdf.roughness; }});
+    bindRead(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.roughness; });  // set by resolve.cpp roughness()
     add({"roughness_y",
          T::Material,
          K::Number,
@@ -123,10 +270,12 @@ std::vector<Param> build() {
          anisotropic,
          "roughness_y",
          [](const Resolved& r) -> json { return r.scene.brdf.alphaY(); }});
+    bindRead(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.roughnessY; });  // resolve.cpp roughness()
     add({"tangent_angle",
          T::Material,
          K::Number,
-         "0",
+         "",
          -360,
          360,
          false,
@@ -138,23 +287,27 @@ std::vector<Param> build() {
          tangentFrame,
          "tangent_angle",
          [](const Resolved& r) -> json { return r.scene.brdf.tangentAngleDeg; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.tangentAngleDeg; });
     add({"fresnel", T::Material, K::Choice, "", 0, 0, false, false, brdf::fresnelNames(), "",
          "none (F = 1) | schlick | dielectric | conductor (exact) | spectral (measured metal); default: the "
          "material's, schlick when --f0 is given, else none",
          "microfacet models", microfacet, "fresnel",
          [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.fresnel); }});
+    bindRead(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.fresnel; }, false);  // resolve.cpp resolveFresnel()
     add({"material", T::Material, K::Choice, "", 0, 0, false, false, brdf::materialNames(), "",
          "Fresnel preset: " + materials + " (copper, gold: spectral)", "microfacet models", hasMaterial, "material",
          [](const Resolved& r) -> json { return r.values.text("material"); }});
     add({"spectral_fresnel",
          T::Material,
          K::Choice,
-         "table",
+         "",
          0,
          0,
          false,
          false,
-         {"table", "exact"},
+         {},
          "",
          "table (F over cos theta_d, 512 entries computed in double per metal, linear between them: within 1e-5 of "
          "exact, at the cost of one lookup) | exact (the sum over the wavelengths at every pixel: 81 on the GPU)",
@@ -162,6 +315,8 @@ std::vector<Param> build() {
          spectral,
          "spectral_fresnel",
          [](const Resolved& r) -> json { return r.scene.brdf.spectralTable ? "table" : "exact"; }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.spectralTable; }, kSpectralFresnel);
     add({"eta",
          T::Material,
          K::Rgb,
@@ -177,6 +332,8 @@ std::vector<Param> build() {
          exactIndex,
          "eta",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.eta); }});
+    bindRead(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.eta; }, false);  // resolveFresnel()
     add({"k",
          T::Material,
          K::Rgb,
@@ -192,6 +349,8 @@ std::vector<Param> build() {
          conductor,
          "k",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.k); }});
+    bindRead(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.k; }, false);  // resolveFresnel()
     add({"f0",
          T::Material,
          K::Rgb,
@@ -207,28 +366,70 @@ std::vector<Param> build() {
          schlick,
          "f0",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.f0); }});
-    add({"geometry", T::Material, K::Choice, "implicit", 0, 0, false, false, brdf::geometryNames(), "",
+    bindRead(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.f0; }, false);  // resolveFresnel()
+    add({"geometry",
+         T::Material,
+         K::Choice,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "none (G = 1) | implicit (G = cos_i cos_o) | cook-torrance (V-cavity) | smith-separable | smith "
          "(height-correlated)",
-         "microfacet models", microfacet, "geometry",
+         "microfacet models",
+         microfacet,
+         "geometry",
          [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.geometry); }});
-    add({"multiscatter", T::Material, K::Choice, "none", 0, 0, false, false, brdf::multiscatterNames(), "",
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.geometry; }, brdf::geometryNames(), brdf::parseGeometry);
+    add({"multiscatter",
+         T::Material,
+         K::Choice,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "none (single scattering) | kulla-conty (Kulla & Conty 2017: the energy Smith masking takes from single "
          "scattering, 1 - E(mu), returned as (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)) times F_avg^2 E_avg / (1 - "
          "F_avg (1 - E_avg)); E integrated by hilite at 64 angles; isotropic microfacet models, --geometry smith or "
          "smith-separable)",
-         "microfacet models", microfacet, "multiscatter",
+         "microfacet models",
+         microfacet,
+         "multiscatter",
          [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.multiscatter); }});
-    add({"diffuse", T::Material, K::Choice, "none", 0, 0, false, false, brdf::diffuseNames(), "",
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.multiscatter; }, brdf::multiscatterNames(),
+        brdf::parseMultiscatter);
+    add({"diffuse",
+         T::Material,
+         K::Choice,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
          "none | lambert | oren-nayar, added to the specular lobe | coupled (rho (1 - E_s(mu_i)) (1 - E_s(mu_o)) / (pi "
          "(1 - E_s_avg)), E_s the specular albedo: the body takes what the surface leaves, specular + diffuse "
          "albedo <= 1)",
-         "built-in models", builtin, "diffuse",
+         "built-in models",
+         builtin,
+         "diffuse",
          [](const Resolved& r) -> json { return brdf::toString(r.scene.brdf.diffuse); }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.diffuse; }, brdf::diffuseNames(), brdf::parseDiffuse);
     add({"albedo",
          T::Material,
          K::Rgb,
-         "0.5",
+         "",
          0,
          1,
          false,
@@ -240,10 +441,12 @@ std::vector<Param> build() {
          diffuse,
          "albedo",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.albedo); }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.albedo; });
     add({"sigma",
          T::Material,
          K::Number,
-         "20",
+         "",
          brdf::kMinSigmaDeg,
          brdf::kMaxSigmaDeg,
          false,
@@ -255,6 +458,8 @@ std::vector<Param> build() {
          orenNayar,
          "sigma",
          [](const Resolved& r) -> json { return r.scene.brdf.sigmaDeg; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.brdf.sigmaDeg; });
     add({"ndf_table",
          T::Material,
          K::Path,
@@ -271,6 +476,7 @@ std::vector<Param> build() {
          tabulated,
          "ndf_table",
          [](const Resolved& r) -> json { return r.scene.brdf.ndfTable->file; }});
+    p.back().read = [](const Resolved& r, bool) { return tableText(r.scene.brdf.ndfTable.get()); };
     add({"measured",
          T::Material,
          K::Path,
@@ -288,6 +494,7 @@ std::vector<Param> build() {
          measured,
          "measured",
          [](const Resolved& r) -> json { return r.scene.brdf.measured->path; }});
+    p.back().read = [](const Resolved& r, bool) { return identity(r.scene.brdf.measured.get()); };
     add({"brdf",
          T::Material,
          K::Path,
@@ -305,6 +512,7 @@ std::vector<Param> build() {
          brdfFile,
          "brdf",
          [](const Resolved& r) -> json { return r.scene.brdfFile->path; }});
+    p.back().read = [](const Resolved& r, bool) { return identity(r.scene.brdfFile.get()); };
     add({"param",
          T::Material,
          K::List,
@@ -330,7 +538,7 @@ std::vector<Param> build() {
     add({"incidence",
          T::Light,
          K::Angles,
-         "45",
+         "",
          0,
          90,
          false,
@@ -343,10 +551,12 @@ std::vector<Param> build() {
          nullptr,
          "incidence_deg",
          [](const Resolved& r) -> json { return r.scene.light.incidenceDeg; }});
+    bindRead(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.incidenceDeg; });  // resolve.cpp: the angles
     add({"azimuth",
          T::Light,
          K::Number,
-         "0",
+         "",
          -360,
          360,
          false,
@@ -358,15 +568,17 @@ std::vector<Param> build() {
          nullptr,
          "azimuth_deg",
          [](const Resolved& r) -> json { return r.scene.light.azimuthDeg; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.azimuthDeg; });
     add({"light",
          T::Light,
          K::Choice,
-         "directional",
+         "",
          0,
          0,
          false,
          false,
-         {"directional", "point", "sphere", "disk"},
+         {},
          "",
          "directional (distant, irradiance E) | point (intensity I, I cos / d^2) | sphere (radius R, intensity I: "
          "radiance I / (pi R^2)) | disk (distant, angular radius delta, irradiance E: radiance E / (pi sin^2 delta))",
@@ -374,10 +586,12 @@ std::vector<Param> build() {
          nullptr,
          "light",
          [](const Resolved& r) -> json { return render::toString(r.scene.light.type); }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.type; }, render::kLightTypes);
     add({"irradiance",
          T::Light,
          K::Number,
-         "1",
+         "",
          0,
          1e6,
          false,
@@ -389,10 +603,12 @@ std::vector<Param> build() {
          distant,
          "irradiance",
          [](const Resolved& r) -> json { return r.scene.light.irradiance; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.irradiance; });
     add({"intensity",
          T::Light,
          K::Number,
-         "1",
+         "",
          0,
          1e12,
          false,
@@ -404,10 +620,12 @@ std::vector<Param> build() {
          atDistance,
          "intensity",
          [](const Resolved& r) -> json { return r.scene.light.intensity; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.intensity; });
     add({"light_distance",
          T::Light,
          K::Number,
-         "10",
+         "",
          1e-3,
          1e6,
          false,
@@ -419,10 +637,12 @@ std::vector<Param> build() {
          atDistance,
          "light_distance",
          [](const Resolved& r) -> json { return r.scene.light.distance; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.distance; });
     add({"light_radius",
          T::Light,
          K::Number,
-         "0.1",
+         "",
          0,
          1e6,
          true,
@@ -435,10 +655,12 @@ std::vector<Param> build() {
          sphere,
          "light_radius",
          [](const Resolved& r) -> json { return r.scene.light.radius; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.radius; });
     add({"light_angle",
          T::Light,
          K::Number,
-         "0.266",
+         "",
          0,
          90,
          true,
@@ -451,10 +673,12 @@ std::vector<Param> build() {
          disk,
          "light_angle",
          [](const Resolved& r) -> json { return r.scene.light.angleDeg; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.angleDeg; });
     add({"light_rings",
          T::Light,
          K::Integer,
-         "auto",
+         "",
          1,
          render::kMaxRings,
          false,
@@ -468,13 +692,14 @@ std::vector<Param> build() {
          area,
          "light_rings",
          [](const Resolved& r) -> json { return render::lightRings(r.scene); }});
-    p.back().automatic = "auto";
+    bindAutomatic(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.rings; }, "auto");
 
     // ---- [camera] ----
     add({"size",
          T::Camera,
          K::Size,
-         "512",
+         "",
          1,
          16384,
          false,
@@ -486,10 +711,13 @@ std::vector<Param> build() {
          nullptr,
          "",
          nullptr});  // the row's size is the one rendered (measurement field `size`)
+    // Written by resolve.cpp (Reader::size: the memory check).
+    p.back().read = [](const Resolved& r, bool) { return sizeText(r.setup.width, r.setup.height); };
+    p.back().def = p.back().read(Resolved{}, false);
     add({"fov",
          T::Camera,
          K::Number,
-         "auto",
+         "",
          0,
          179,
          true,
@@ -502,16 +730,17 @@ std::vector<Param> build() {
          fixedFraming,
          "fov",
          [](const Resolved& r) -> json { return r.fovDeg; }});
-    p.back().automatic = "auto";
+    bindAutomatic(
+        p.back(), [](auto& r) -> auto& { return r.fovDeg; }, "auto");
     add({"view",
          T::Camera,
          K::Choice,
-         "measure",
+         "",
          0,
          0,
          false,
          false,
-         {"measure", "photo"},
+         {},
          "",
          "render: measure (camera on the mirror direction) | photo (looking across the plane); measure always "
          "uses the measurement view",
@@ -519,10 +748,12 @@ std::vector<Param> build() {
          nullptr,
          "",
          nullptr});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.view; }, kViews);
     add({"elevation",
          T::Camera,
          K::Number,
-         "auto",
+         "",
          0,
          90,
          false,
@@ -534,11 +765,12 @@ std::vector<Param> build() {
          nullptr,
          "",
          nullptr});
-    p.back().automatic = "auto";
+    bindAutomatic(
+        p.back(), [](auto& r) -> auto& { return r.elevationDeg; }, "auto");
     add({"distance",
          T::Camera,
          K::Number,
-         "10",
+         "",
          1e-3,
          1e6,
          false,
@@ -550,11 +782,15 @@ std::vector<Param> build() {
          atDistance,
          "distance",
          [](const Resolved& r) -> json { return r.scene.eyeDistance; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.eyeDistance; });
     add({"gl_backend", T::Camera, K::Choice, "", 0, 0, false, false, gl::backendNames(), "",
          "auto (a GPU through EGL device if there is one, else osmesa, else egl) | osmesa | egl (surfaceless) | "
          "egl-device (EGL_EXT_platform_device: --gpu N, default the first GPU, else Mesa's software device) "
          "(default: $HILITE_GL_BACKEND, else auto)",
          "GL renders", nullptr, "", nullptr});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.backend; });
     add({"gpu",
          T::Camera,
          K::Integer,
@@ -571,10 +807,13 @@ std::vector<Param> build() {
          nullptr,
          "",
          nullptr});
+    p.back().read = [](const Resolved& r, bool) {
+        return r.gpu < 0 ? std::string() : std::to_string(r.gpu);
+    };  // gpuIndex()
     add({"shader_timeout",
          T::Camera,
          K::Number,
-         "10",
+         "",
          1e-3,
          3600,
          false,
@@ -587,17 +826,19 @@ std::vector<Param> build() {
          nullptr,
          "",
          nullptr});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.shaderTimeoutS; });
 
     // ---- [surface] ----
     add({"bumps",
          T::Surface,
          K::Choice,
-         "none",
+         "",
          0,
          0,
          false,
          false,
-         {"none", "explicit"},
+         {},
          "",
          "none (flat: the analytic BRDF) | explicit (the material's beckmann/ggx NDF as a seeded bump field of "
          "mirror facets, lit by a soft sun)",
@@ -605,10 +846,12 @@ std::vector<Param> build() {
          nullptr,
          "bumps",
          [](const Resolved& r) -> json { return r.scene.surface.bumps ? "explicit" : "none"; }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.surface.bumps; }, kBumps);
     add({"bump_period_px",
          T::Surface,
          K::Number,
-         "4",
+         "",
          render::kMinBumpPeriodPx,
          render::kMaxBumpPeriodPx,
          false,
@@ -620,10 +863,12 @@ std::vector<Param> build() {
          bumps,
          "bump_period_px",
          [](const Resolved& r) -> json { return r.scene.surface.bumpPeriodPx; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.surface.bumpPeriodPx; });
     add({"bump_seed",
          T::Surface,
          K::Integer,
-         "1",
+         "",
          0,
          9007199254740992.0,
          false,
@@ -635,10 +880,12 @@ std::vector<Param> build() {
          bumps,
          "bump_seed",
          [](const Resolved& r) -> json { return r.scene.surface.seed; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.surface.seed; });
     add({"bump_samples",
          T::Surface,
          K::Integer,
-         "0",
+         "",
          0,
          render::kMaxBumpSamples,
          false,
@@ -650,10 +897,12 @@ std::vector<Param> build() {
          bumps,
          "bump_samples",
          [](const Resolved& r) -> json { return r.scene.surface.samples; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.surface.samples; });
     add({"sun",
          T::Surface,
          K::Number,
-         "0.1",
+         "",
          render::kMinSunDeg,
          render::kMaxSunDeg,
          false,
@@ -665,15 +914,17 @@ std::vector<Param> build() {
          bumps,
          "sun",
          [](const Resolved& r) -> json { return r.scene.surface.sunDeg; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.surface.sunDeg; });
     add({"bump_filter",
          T::Surface,
          K::Choice,
-         "auto",
+         "",
          0,
          0,
          false,
          false,
-         {"auto", "supersample", "moments"},
+         {},
          "",
          "how a pixel integrates its bumps: supersample (Gaussian mirror patches) | moments (the footprint's "
          "realised slope moments, LEAN mapping: a prefilter; beckmann bumps) | auto (supersample while the centre "
@@ -682,10 +933,12 @@ std::vector<Param> build() {
          bumps,
          "bump_filter",
          [](const Resolved& r) -> json { return render::toString(r.scene.surface.filter); }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.surface.filter; }, render::kBumpFilters);
     add({"prefilter_check",
          T::Surface,
          K::Switch,
-         "false",
+         "",
          0,
          0,
          false,
@@ -698,12 +951,14 @@ std::vector<Param> build() {
          bumps,
          "prefilter_check",
          [](const Resolved& r) -> json { return r.scene.surface.prefilterCheck; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.scene.surface.prefilterCheck; });
 
     // ---- [measurement] ----
     add({"threshold",
          T::Measurement,
          K::Number,
-         "0.5",
+         "",
          0,
          1,
          true,
@@ -715,10 +970,12 @@ std::vector<Param> build() {
          nullptr,
          "threshold",
          [](const Resolved& r) -> json { return r.setup.options.threshold; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.setup.options.threshold; });
     add({"min_pixels",
          T::Measurement,
          K::Integer,
-         "8",
+         "",
          1,
          100000,
          false,
@@ -730,25 +987,29 @@ std::vector<Param> build() {
          nullptr,
          "min_pixels",
          [](const Resolved& r) -> json { return r.setup.options.minPixelsAcross; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.setup.options.minPixelsAcross; });
     add({"boundary",
          T::Measurement,
          K::Choice,
-         "subpixel",
+         "",
          0,
          0,
          false,
          false,
-         {"subpixel", "pixel"},
+         {},
          "",
          "subpixel (contour pixels count their covered fraction) | pixel (in/out)",
          "every measurement",
          nullptr,
          "boundary",
          [](const Resolved& r) -> json { return r.setup.options.subpixel ? "subpixel" : "pixel"; }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.setup.options.subpixel; }, kBoundaries);
     add({"supersample",
          T::Measurement,
          K::Integer,
-         "1",
+         "",
          1,
          8,
          false,
@@ -761,30 +1022,34 @@ std::vector<Param> build() {
          nullptr,
          "supersample",
          [](const Resolved& r) -> json { return r.setup.supersample; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.setup.supersample; });
     add({"renderer",
          T::Measurement,
          K::Choice,
-         "gl",
+         "",
          0,
          0,
          false,
          false,
-         {"gl", "cpu"},
+         {},
          "",
          "gl (float shader) | cpu (the double-precision twin on every core)",
          "every measurement",
          nullptr,
          "renderer",
          [](const Resolved& r) -> json { return r.setup.cpu ? "cpu" : "gl"; }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.setup.cpu; }, kRenderers);
     add({"crop",
          T::Measurement,
          K::Choice,
-         "on",
+         "",
          0,
          0,
          false,
          false,
-         {"on", "off"},
+         {},
          "",
          "on: automatic framing shades, reads and analyses only the region's box of the final frame (same numbers, "
          "less time) | off: the whole frame",
@@ -792,10 +1057,12 @@ std::vector<Param> build() {
          nullptr,
          "crop",
          [](const Resolved& r) -> json { return r.setup.crop ? "on" : "off"; }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.setup.crop; }, kCrops);
     add({"aim_size",
          T::Measurement,
          K::Integer,
-         "64",
+         "",
          16,
          1024,
          false,
@@ -808,6 +1075,8 @@ std::vector<Param> build() {
          [](const Resolved& r) { return r.fovDeg == 0; },
          "aim_size",
          [](const Resolved& r) -> json { return r.setup.coarseSize; }});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.setup.coarseSize; });
     add({"tolerance",
          T::Measurement,
          K::Number,
@@ -825,10 +1094,12 @@ std::vector<Param> build() {
          tolerance,
          "tolerance",
          [](const Resolved& r) -> json { return r.tolerance; }});
+    bindUnset(
+        p.back(), [](auto& r) -> auto& { return r.tolerance; }, 0.0);
     add({"reference",
          T::Measurement,
          K::Switch,
-         "false",
+         "",
          0,
          0,
          false,
@@ -840,6 +1111,8 @@ std::vector<Param> build() {
          nullptr,
          "",
          nullptr});
+    bind(
+        p.back(), [](auto& r) -> auto& { return r.reference; });
     return p;
 }
 
@@ -927,6 +1200,38 @@ std::vector<std::string> columns() {
     for (const Param& p : registry())
         if (!p.column.empty()) out.push_back(p.column);
     return out;
+}
+
+std::string sceneKey(const render::Scene& scene) {
+    Resolved r;
+    r.scene = scene;
+    std::string key;
+    for (const Param& p : registry())
+        if (p.read) key += p.name + "=" + p.read(r, true) + ";";
+    // The fields of the scene no parameter sets.
+    const render::Light& l = scene.light;
+    key += "rule_target=" + exactText(l.ruleTarget);
+    if (l.chartCenter)
+        key += ";chart_centre=" + exactText(l.chartCenter->x) + "," + exactText(l.chartCenter->y) + "," +
+               exactText(l.chartCenter->z);
+    if (const auto& sp = scene.brdf.spectrum) key += ";spectrum=" + sp->name + ":" + std::to_string(sp->size());
+    const render::Surface& f = scene.surface;
+    key += ";bump_tile=" + std::to_string(f.texels) + "," + std::to_string(f.bumpsPerTile) + "," +
+           exactText(f.samplesPerPeriod);
+    return key;
+}
+
+std::string energyKey(const brdf::Params& p) {
+    render::Scene s;
+    s.brdf = p;
+    // The tables are the specular lobe's albedo: the diffuse term enters them only as coupled or not, its
+    // albedo and sigma not at all (brdf/energy.cpp makeEs).
+    const brdf::Params plain;
+    if (p.diffuse != brdf::Diffuse::Coupled) s.brdf.diffuse = plain.diffuse;
+    s.brdf.albedo = plain.albedo;
+    s.brdf.sigmaDeg = plain.sigmaDeg;
+    s.brdf.energy.reset();
+    return sceneKey(s);
 }
 
 std::string markdownTable() {

@@ -16,6 +16,8 @@
 
 #include <cmath>
 #include <iostream>
+#include <map>
+#include <mutex>
 #include <ostream>
 #include <set>
 #include <stdexcept>
@@ -39,22 +41,16 @@ public:
     bool given(const char* name) const { return m_v.given(name); }
     std::string where(const char* name) const { return m_v.where(name); }
     /// The checked text of a parameter (given or default).
-    std::string text(const char* name) const {
-        const Param& p = param(name);
-        const std::string t = m_v.text(name);
-        if (!t.empty() || m_v.given(name))
-            if (const std::string err = check(p, t); !err.empty()) throw InputError(where(name) + ": " + err);
+    std::string text(const char* name) const { return text(param(name)); }
+    std::string text(const Param& p) const {
+        const std::string t = m_v.text(p.name);
+        if (!t.empty() || m_v.given(p.name))
+            if (const std::string err = check(p, t); !err.empty()) throw InputError(m_v.where(p.name) + ": " + err);
         return t;
     }
     double number(const char* name) const {
         const std::string t = text(name);
         return t.empty() ? 0.0 : *parseNumber(t);
-    }
-    /// A number that may also be its entry's automatic word: nullopt for that word.
-    std::optional<double> numberOrAutomatic(const char* name) const {
-        const std::string t = text(name);
-        if (t == param(name).automatic) return std::nullopt;
-        return *parseNumber(t);
     }
     dvec3 rgb(const char* name) const {
         const auto parts = split(text(name), ',');
@@ -62,7 +58,6 @@ public:
         for (int c = 0; c < 3; ++c) v[c] = *parseNumber(parts[parts.size() == 1 ? 0 : size_t(c)]);
         return v;
     }
-    bool flag(const char* name) const { return text(name) == "true"; }
     /// "0:85:5", "0,30,60" or "30", each angle checked against the entry's range.
     std::vector<double> angles(const char* name) const;
     void size(const char* name, int& width, int& height) const;
@@ -144,6 +139,21 @@ double roughness(const Reader& in, const char* name, bool used) {
     return v;
 }
 
+/// brdf::energyTables, kept per process by the registry values of the BRDF they were integrated for
+/// (scene::energyKey: a parameter added to the registry enters the key).
+std::shared_ptr<const brdf::EnergyTables> cachedEnergyTables(const brdf::Params& p) {
+    static std::mutex mutex;
+    static std::map<std::string, std::shared_ptr<const brdf::EnergyTables>> cache;
+    const std::string key = energyKey(p);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (auto it = cache.find(key); it != cache.end()) return it->second;
+    }
+    auto t = brdf::energyTables(p);
+    std::lock_guard<std::mutex> lock(mutex);
+    return cache.emplace(key, std::move(t)).first->second;
+}
+
 /// Fresnel: a material names a mode and its constants; fresnel, eta, k, f0 override them.
 void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
     using brdf::Fresnel;
@@ -175,7 +185,6 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
         throw InputError(w + " dielectric: " + mat->name + " is a metal (use conductor, schlick or spectral)");
     if (p.fresnel == Fresnel::Spectral && !p.spectrum)
         throw InputError(w + " spectral: needs --material copper or gold (the measured spectra)");
-    p.spectralTable = in.text("spectral_fresnel") == "table";
     if ((eta || k) && p.fresnel == Fresnel::Spectral)
         throw InputError(in.where(eta ? "eta" : "k") + ": not used by --fresnel spectral (the material's spectrum is)");
     if (k && p.fresnel == Fresnel::Dielectric) throw InputError(in.where("k") + ": only for --fresnel conductor");
@@ -190,15 +199,17 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
         for (int c = 0; c < 3; ++c) p.f0[c] = brdf::F_Conductor(1.0, p.eta[c], p.k[c]);
 }
 
-brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) {
-    brdf::Params p;
-    if (in.given("measured"))  // the table is the whole BRDF: any other material term given would go unused
+/// A measured table is the whole BRDF: any other material term given would go unused.
+void checkMeasuredAlone(const Reader& in) {
+    if (in.given("measured"))
         for (const Param& other : registry())
             if (other.table == Table::Material && other.name != "measured" && in.given(other.name.c_str()))
                 throw InputError(in.where(other.name.c_str()) + ": not with " + in.where("measured") +
                                  " (the MERL table is the whole BRDF: its lobe, F, G and diffuse)");
-    p.model = *brdf::parseModel(in.text("model"));
-    p.exponent = in.number("exponent");
+}
+
+/// The BRDF's combined parameters, over the fields the registry's entries have written into `p`.
+void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Params& p) {
     const bool usesRoughness = p.model != brdf::Model::None && !brdf::usesExponent(p.model);
     if (purpose == Purpose::Brdf && usesRoughness && brdf::isMicrofacet(p.model)) {
         // The quadrature of `brdf albedo` resolves lobes down to kMinIntegrableRoughness; a mirror would
@@ -220,7 +231,6 @@ brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) 
                              fmt(brdf::kMinIntegrableRoughness) + ", " + fmt(brdf::kMaxRoughness) + "] (got " +
                              fmt(*p.roughnessY) + ")");
     }
-    p.tangentAngleDeg = in.number("tangent_angle");
     const bool table = in.given("ndf_table");
     if (p.model == brdf::Model::Tabulated && !table)
         throw InputError(in.where("model") + " tabulated: needs --ndf-table FILE (rows 'theta_h_deg, D')");
@@ -228,10 +238,6 @@ brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) 
         throw InputError(in.where("ndf_table") + ": the table is the NDF of --model tabulated (got --model " +
                          in.text("model") + ")");
     if (table) p.ndfTable = brdf::loadNdfTable(in.text("ndf_table"));
-    p.geometry = *brdf::parseGeometry(in.text("geometry"));
-    p.diffuse = *brdf::parseDiffuse(in.text("diffuse"));
-    p.albedo = in.rgb("albedo");
-    p.sigmaDeg = in.number("sigma");
     resolveFresnel(in, p, spectralStepNm);
     if (in.given("measured")) {
         p.measured = brdf::merl::load(in.text("measured"), in.where("measured"));
@@ -240,33 +246,16 @@ brdf::Params resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm) 
         p.diffuse = brdf::Diffuse::None;
         p.roughnessY.reset();
     }
-    p.multiscatter = *brdf::parseMultiscatter(in.text("multiscatter"));
     const bool ms = p.multiscatter != brdf::Multiscatter::None, coupled = p.diffuse == brdf::Diffuse::Coupled;
     if (ms || coupled) {  // the albedo tables of the energy terms, integrated (and cached) here
         const std::string w =
             ms ? in.where("multiscatter") + " " + in.text("multiscatter") : in.where("diffuse") + " coupled";
         try {
-            p.energy = brdf::energyTables(p);
+            p.energy = cachedEnergyTables(p);
         } catch (const std::invalid_argument& e) {
             throw InputError(w + ": " + e.what());
         }
     }
-    return p;
-}
-
-render::Surface resolveSurface(const Reader& in) {
-    render::Surface s;
-    s.bumps = in.text("bumps") == "explicit";
-    s.bumpPeriodPx = in.number("bump_period_px");
-    s.seed = uint64_t(in.number("bump_seed"));
-    s.samples = int(in.number("bump_samples"));
-    s.sunDeg = in.number("sun");
-    const std::string filter = in.text("bump_filter");
-    s.filter = filter == "supersample" ? render::BumpFilter::Supersample
-               : filter == "moments"   ? render::BumpFilter::Moments
-                                       : render::BumpFilter::Auto;
-    s.prefilterCheck = in.flag("prefilter_check");
-    return s;
 }
 
 /// The scene's cross-parameter rules: what a .brdf file and a bump field can be combined with.
@@ -293,13 +282,6 @@ void checkScene(const Reader& in, const render::Scene& s) {
         throw InputError(in.where("bump_filter") +
                          " moments: the prefilter's Gaussian is the slope distribution of beckmann bumps only (ggx "
                          "bumps are a remapped normal map; use supersample or auto)");
-}
-
-render::LightType lightType(const std::string& name) {
-    if (name == "point") return render::LightType::Point;
-    if (name == "sphere") return render::LightType::Sphere;
-    if (name == "disk") return render::LightType::Disk;
-    return render::LightType::Directional;
 }
 
 /// A light's own rules: a sphere must stay above the plane at every incidence of the sweep (its centre at height
@@ -391,8 +373,11 @@ Resolved resolve(const Values& values, Purpose purpose) {
     r.values = values;
     r.spectralStepNm = purpose == Purpose::Brdf ? brdf::kFullStepNm : 5;
     render::Scene& s = r.scene;
-    s.brdf = resolveBrdf(in, purpose, r.spectralStepNm);
-    r.shaderTimeoutS = in.number("shader_timeout");
+    checkMeasuredAlone(in);
+    // Every parameter bound to a field writes it (registry.cpp); the setters below combine the others.
+    for (const Param& p : registry())
+        if (p.write) p.write(r, in.text(p));
+    resolveBrdf(in, purpose, r.spectralStepNm, s.brdf);
     if (s.brdf.measured && in.given("brdf"))  // before reading the .brdf: the combination is the error
         throw InputError(in.where("measured") + ": not with " + in.where("brdf") +
                          " (each is the whole BRDF: give one)");
@@ -408,45 +393,23 @@ Resolved resolve(const Values& values, Purpose purpose) {
         }
         s.brdfFile = std::move(file);
     }
-    s.light.azimuthDeg = in.number("azimuth");
-    s.light.irradiance = in.number("irradiance");
-    s.light.type = lightType(in.text("light"));
-    s.light.intensity = in.number("intensity");
-    s.light.distance = in.number("light_distance");
-    s.light.radius = in.number("light_radius");
-    s.light.angleDeg = in.number("light_angle");
-    s.light.rings = int(in.numberOrAutomatic("light_rings").value_or(0.0));
-    s.eyeDistance = in.number("distance");
-    s.surface = resolveSurface(in);
     checkScene(in, s);
     r.angles = in.angles("incidence");
     s.light.incidenceDeg = r.angles.front();
     checkLight(in, s.light, r.angles);
 
     in.size("size", r.setup.width, r.setup.height);
-    r.fovDeg = in.numberOrAutomatic("fov").value_or(0.0);  // 0: automatic (the registry refuses a given 0)
+    // r.fovDeg 0: automatic (the registry refuses a given 0)
     if (purpose == Purpose::Measure && r.fovDeg > 160)
         throw InputError(in.where("fov") + ": fixed framing takes a field of view in (0, 160] (got " + fmt(r.fovDeg) +
                          ")");
     r.setup.fovDeg = r.fovDeg;
-    r.view = in.text("view") == "photo" ? View::Photo : View::Measure;
-    r.elevationDeg = in.numberOrAutomatic("elevation");
     if (r.view == View::Photo && r.elevationDeg == 0.0)  // a valid view, but a black image needs saying why
         warnOnce(in.where("elevation") + " 0: the camera lies in the plane and sees it edge-on: no surface in view");
-    r.backend = in.text("gl_backend");
     if (in.given("gpu")) r.gpu = gpuIndex(in, backendOf(r.backend));
-    r.setup.options.threshold = in.number("threshold");
-    r.setup.options.minPixelsAcross = int(in.number("min_pixels"));
-    r.setup.options.subpixel = in.text("boundary") == "subpixel";
-    r.setup.supersample = int(in.number("supersample"));
-    r.setup.cpu = in.text("renderer") == "cpu";
-    r.setup.crop = in.text("crop") == "on";
-    r.setup.coarseSize = int(in.number("aim_size"));
-    r.tolerance = in.given("tolerance") ? in.number("tolerance") : 0.0;
     // The light's rule takes a quarter of the error budget: its radiance error moves the contour by about as much
     // relative to the lobe's width (render/area_light.hpp).
     if (r.tolerance > 0) s.light.ruleTarget = 0.25 * r.tolerance;
-    r.reference = in.flag("reference");
     if (purpose == Purpose::Measure) checkMeasurement(in, r);
     return r;
 }

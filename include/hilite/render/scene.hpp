@@ -5,6 +5,7 @@
 #include "hilite/brdf_file/brdf_file.hpp"
 #include "hilite/core/camera.hpp"
 #include "hilite/core/chart.hpp"
+#include "hilite/core/names.hpp"
 #include "hilite/render/surface.hpp"
 
 #include <iosfwd>
@@ -20,7 +21,12 @@ enum class LightType {
     Sphere,       ///< a uniformly glowing sphere of radius R: the point light's intensity I (power 4 pi I)
     Disk,         ///< distant disk of angular radius delta (the sun): irradiance E normal to it
 };
-const char* toString(LightType);
+/// --light's spellings, in help order.
+inline constexpr Named<LightType> kLightTypes[] = {{LightType::Directional, "directional"},
+                                                   {LightType::Point, "point"},
+                                                   {LightType::Sphere, "sphere"},
+                                                   {LightType::Disk, "disk"}};
+inline const char* toString(LightType t) { return nameIn(kLightTypes, t); }
 
 /// The light: its direction from the origin by incidence theta_i and azimuth phi_i. A directional light
 /// delivers irradiance E (on a surface facing it), so the plane receives E cos(theta_i); a point light

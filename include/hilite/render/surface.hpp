@@ -2,6 +2,7 @@
 // The plane's surface: flat (the BRDF is evaluated directly) or an explicit bump field of mirror
 // facets whose slopes realise the material's NDF (micro/bump_field.hpp), lit by a soft sun.
 
+#include "hilite/core/names.hpp"
 #include "hilite/micro/bump_field.hpp"
 
 #include <cstdint>
@@ -15,7 +16,10 @@ enum class BumpFilter {
     Supersample,  ///< S x S Gaussian mirror patches per pixel (exact as the patches shrink)
     Moments,      ///< the footprint's realised slope moments (LEAN mapping): a prefilter, its error measured
 };
-const char* toString(BumpFilter);
+/// --bump-filter's spellings, in help order.
+inline constexpr Named<BumpFilter> kBumpFilters[] = {
+    {BumpFilter::Auto, "auto"}, {BumpFilter::Supersample, "supersample"}, {BumpFilter::Moments, "moments"}};
+inline const char* toString(BumpFilter f) { return nameIn(kBumpFilters, f); }
 std::ostream& operator<<(std::ostream&, BumpFilter);
 
 struct Surface {

@@ -8,9 +8,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace hilite::render {
+struct Scene;  // hilite/render/scene.hpp
+}
+namespace hilite::brdf {
+struct Params;  // hilite/brdf/params.hpp
+}
 
 namespace hilite::scene {
 
@@ -40,7 +48,9 @@ struct Param {
     std::string name;  ///< the scene-file key and the flag without dashes: roughness_y, --roughness-y
     Table table;
     Kind kind;
-    std::string def;        ///< the default as text; "" = unset (derived or optional, see help)
+    /// The default as text; "" = unset (derived or optional, see help). A parameter bound to a field (`read`)
+    /// takes it from a default-constructed Resolved: the structs' initializers are the only defaults.
+    std::string def;
     double lo = 0, hi = 0;  ///< Number, Integer, Rgb, Angles, Size
     bool openLo = false, openHi = false;
     std::vector<std::string> choices;  ///< Choice
@@ -56,6 +66,13 @@ struct Param {
     /// Number: a word read as "chosen automatically" besides the interval ("auto"), so no number in range
     /// stands for automatic (--fov 0 meant automatic); "" for none.
     std::string automatic = "";
+    /// The field the parameter sets: `write` stores its checked text there (resolve() calls it for every entry
+    /// that has one; null: resolve() combines the parameter with others in a named setter); `read` prints the
+    /// field back (exact: every digit, for cache keys; else as the default is written). Null `read`: the
+    /// parameter reaches the scene only through other fields (material: fresnel, eta, k, f0; param: the
+    /// .brdf file's values).
+    std::function<void(Resolved&, const std::string&)> write = nullptr;
+    std::function<std::string(const Resolved&, bool exact)> read = nullptr;
 
     /// "--roughness-y"
     std::string flag() const;
@@ -75,6 +92,14 @@ const Param* find(const std::string& name);
 std::vector<std::string> names(Table t);
 /// Every row column the registry fills, in order.
 std::vector<std::string> columns();
+
+/// The values of every registry field of `scene` (each parameter's read() in full precision) and of the fields
+/// no parameter sets (a chart centre, the light rule's target, the spectrum, the bump tile): the key of a
+/// cache of anything computed from the scene, so a parameter added to the registry enters every key.
+std::string sceneKey(const render::Scene& scene);
+/// The key of the energy tables of a BRDF (brdf::energyTables): sceneKey() of a scene with that BRDF alone,
+/// the diffuse albedo and sigma (which the tables do not depend on) set to their defaults.
+std::string energyKey(const brdf::Params& p);
 
 /// The registry as the README's markdown table (flag, scene key, values, default, applies to, help);
 /// `hilite explain --part flags` prints it and a test compares it with the README.

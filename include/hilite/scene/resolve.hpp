@@ -47,6 +47,9 @@ private:
 };
 
 enum class View { Measure, Photo };
+/// --view's spellings.
+inline constexpr Named<View> kViews[] = {{View::Measure, "measure"}, {View::Photo, "photo"}};
+inline const char* toString(View v) { return nameIn(kViews, v); }
 
 /// What the values resolve to: the scene as rendered, and how it is measured.
 struct Resolved {
