@@ -26,6 +26,15 @@ namespace hilite::scene {
 
 namespace {
 
+// The parameters resolve() combines by hand (the others write their own fields: Param::write), each name
+// checked by the compiler.
+constexpr Name kBrdf{"brdf"}, kBumpFilter{"bump_filter"}, kBumps{"bumps"}, kDiffuse{"diffuse"}, kElevation{"elevation"},
+    kEta{"eta"}, kF0{"f0"}, kFov{"fov"}, kFresnel{"fresnel"}, kGpu{"gpu"}, kIncidence{"incidence"}, kK{"k"},
+    kLight{"light"}, kLightRadius{"light_radius"}, kMaterial{"material"}, kMeasured{"measured"}, kModel{"model"},
+    kMultiscatter{"multiscatter"}, kNdfTable{"ndf_table"}, kParam{"param"}, kRenderer{"renderer"},
+    kRoughness{"roughness"}, kRoughnessY{"roughness_y"}, kSize{"size"}, kSupersample{"supersample"},
+    kTolerance{"tolerance"};
+
 /// Prints "hilite: warning: MSG" on stderr, once per process for each message (a sweep repeats them).
 void warnOnce(const std::string& msg) {
     static std::set<std::string> said;
@@ -38,42 +47,41 @@ class Reader {
 public:
     explicit Reader(const Values& v) : m_v(v) {}
     const Values& values() const { return m_v; }
-    bool given(const char* name) const { return m_v.given(name); }
-    std::string where(const char* name) const { return m_v.where(name); }
+    bool given(Name n) const { return m_v.given(n.text); }
+    bool given(const Param& p) const { return m_v.given(p.name); }
+    std::string where(Name n) const { return m_v.where(n.text); }
+    std::string where(const Param& p) const { return m_v.where(p.name); }
     /// The checked text of a parameter (given or default).
-    std::string text(const char* name) const { return text(param(name)); }
+    std::string text(Name n) const { return text(param(n)); }
     std::string text(const Param& p) const {
         const std::string t = m_v.text(p.name);
         if (!t.empty() || m_v.given(p.name))
             if (const std::string err = check(p, t); !err.empty()) throw InputError(m_v.where(p.name) + ": " + err);
         return t;
     }
-    double number(const char* name) const {
+    double number(Name name) const {
         const std::string t = text(name);
         return t.empty() ? 0.0 : *parseNumber(t);
     }
-    dvec3 rgb(const char* name) const {
+    dvec3 rgb(Name name) const {
         const auto parts = split(text(name), ',');
         dvec3 v;
         for (int c = 0; c < 3; ++c) v[c] = *parseNumber(parts[parts.size() == 1 ? 0 : size_t(c)]);
         return v;
     }
     /// "0:85:5", "0,30,60" or "30", each angle checked against the entry's range.
-    std::vector<double> angles(const char* name) const;
-    void size(const char* name, int& width, int& height) const;
+    std::vector<double> angles(Name name) const;
+    void size(Name name, int& width, int& height) const;
 
 private:
-    static const Param& param(const char* name) {
-        const Param* p = find(name);
-        if (!p) throw std::logic_error(std::string("scene: no parameter '") + name + "' in the registry");
-        return *p;
-    }
+    /// A Name is one of kNames, and kNames are the registry's entries (test_registry_defaults).
+    static const Param& param(Name n) { return *find(n.text); }
     const Values& m_v;
 };
 
-std::vector<double> Reader::angles(const char* name) const {
+std::vector<double> Reader::angles(Name name) const {
     const Param& p = param(name);
-    const std::string s = m_v.text(name), w = where(name);
+    const std::string s = m_v.text(name.text), w = where(name);
     auto angle = [&](const std::string& t) {
         const auto v = parseNumber(t);
         if (!v) throw InputError(w + ": '" + t + "' is not a number");
@@ -101,9 +109,9 @@ std::vector<double> Reader::angles(const char* name) const {
     return out;
 }
 
-void Reader::size(const char* name, int& width, int& height) const {
+void Reader::size(Name name, int& width, int& height) const {
     const Param& p = param(name);
-    const std::string s = m_v.text(name), w = where(name);
+    const std::string s = m_v.text(name.text), w = where(name);
     const auto x = s.find('x');
     const auto a = parseNumber(s.substr(0, x));
     const auto b = x == std::string::npos ? a : parseNumber(s.substr(x + 1));
@@ -123,7 +131,7 @@ void Reader::size(const char* name, int& width, int& height) const {
 /// A roughness: 0 is a perfect mirror (the measurement says `mirror`); values in (0, 1e-7) are raised to
 /// 1e-7 with a warning (brdf::kMinNonzeroRoughness: float32 cannot render narrower lobes). `used`: the
 /// model takes a roughness (else the value is only checked).
-double roughness(const Reader& in, const char* name, bool used) {
+double roughness(const Reader& in, Name name, bool used) {
     const double v = in.number(name);
     if (!used) return v;
     const std::string w = in.where(name);
@@ -157,14 +165,14 @@ std::shared_ptr<const brdf::EnergyTables> cachedEnergyTables(const brdf::Params&
 /// Fresnel: a material names a mode and its constants; fresnel, eta, k, f0 override them.
 void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
     using brdf::Fresnel;
-    const std::string materialName = in.text("material");
+    const std::string materialName = in.text(kMaterial);
     const brdf::Material* mat = materialName.empty() ? nullptr : brdf::findMaterial(materialName);
-    const bool eta = in.given("eta"), k = in.given("k"), f0 = in.given("f0");
+    const bool eta = in.given(kEta), k = in.given(kK), f0 = in.given(kF0);
     // An F0 without a named mode asks for Schlick, the only mode that takes one.
-    p.fresnel = in.given("fresnel") ? *brdf::parseFresnel(in.text("fresnel"))
-                : mat               ? mat->fresnel
-                : f0                ? Fresnel::Schlick
-                                    : Fresnel::None;
+    p.fresnel = in.given(kFresnel) ? *brdf::parseFresnel(in.text(kFresnel))
+                : mat              ? mat->fresnel
+                : f0               ? Fresnel::Schlick
+                                   : Fresnel::None;
     if (mat && brdf::hasSpectralData(mat->name)) {
         p.spectrum = brdf::loadSpectrum(render::dataDirectory(), mat->name, spectralStepNm);
         // The metal's RGB stand-ins for the other modes: eta, k at 650 / 550 / 450 nm, F0 = spectral F(0).
@@ -177,7 +185,7 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
     } else if (mat) {
         p.eta = mat->eta, p.k = mat->k, p.f0 = mat->f0;
     }
-    const std::string fresnelName = brdf::toString(p.fresnel), w = in.where("fresnel");
+    const std::string fresnelName = brdf::toString(p.fresnel), w = in.where(kFresnel);
     if (mat && mat->fresnel == Fresnel::Schlick &&
         (p.fresnel == Fresnel::Dielectric || p.fresnel == Fresnel::Conductor))
         throw InputError(w + " " + fresnelName + ": " + mat->name + " has an F0 preset only (use schlick)");
@@ -186,25 +194,25 @@ void resolveFresnel(const Reader& in, brdf::Params& p, int spectralStepNm) {
     if (p.fresnel == Fresnel::Spectral && !p.spectrum)
         throw InputError(w + " spectral: needs --material copper or gold (the measured spectra)");
     if ((eta || k) && p.fresnel == Fresnel::Spectral)
-        throw InputError(in.where(eta ? "eta" : "k") + ": not used by --fresnel spectral (the material's spectrum is)");
-    if (k && p.fresnel == Fresnel::Dielectric) throw InputError(in.where("k") + ": only for --fresnel conductor");
-    if (eta) p.eta = in.rgb("eta");
-    if (k) p.k = in.rgb("k");
+        throw InputError(in.where(eta ? kEta : kK) + ": not used by --fresnel spectral (the material's spectrum is)");
+    if (k && p.fresnel == Fresnel::Dielectric) throw InputError(in.where(kK) + ": only for --fresnel conductor");
+    if (eta) p.eta = in.rgb(kEta);
+    if (k) p.k = in.rgb(kK);
     if (f0 && p.fresnel != Fresnel::Schlick)
         throw InputError(
-            in.where("f0") + ": only for --fresnel schlick (--fresnel " + fresnelName +
+            in.where(kF0) + ": only for --fresnel schlick (--fresnel " + fresnelName +
             (p.fresnel == Fresnel::Spectral ? " uses the material's measured eta, k)" : " does not use F0)"));
-    if (f0) p.f0 = in.rgb("f0");
+    if (f0) p.f0 = in.rgb(kF0);
     else if (eta || k)  // Schlick's F0 of the index given
         for (int c = 0; c < 3; ++c) p.f0[c] = brdf::F_Conductor(1.0, p.eta[c], p.k[c]);
 }
 
 /// A measured table is the whole BRDF: any other material term given would go unused.
 void checkMeasuredAlone(const Reader& in) {
-    if (in.given("measured"))
+    if (in.given(kMeasured))
         for (const Param& other : registry())
-            if (other.table == Table::Material && other.name != "measured" && in.given(other.name.c_str()))
-                throw InputError(in.where(other.name.c_str()) + ": not with " + in.where("measured") +
+            if (other.table == Table::Material && other.name != "measured" && in.given(other))
+                throw InputError(in.where(other) + ": not with " + in.where(kMeasured) +
                                  " (the MERL table is the whole BRDF: its lobe, F, G and diffuse)");
 }
 
@@ -214,33 +222,33 @@ void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Pa
     if (purpose == Purpose::Brdf && usesRoughness && brdf::isMicrofacet(p.model)) {
         // The quadrature of `brdf albedo` resolves lobes down to kMinIntegrableRoughness; a mirror would
         // integrate to a silent 0.
-        const double v = in.number("roughness");
+        const double v = in.number(kRoughness);
         if (v < brdf::kMinIntegrableRoughness)
-            throw InputError(in.where("roughness") + ": must be a finite number in [" +
+            throw InputError(in.where(kRoughness) + ": must be a finite number in [" +
                              fmt(brdf::kMinIntegrableRoughness) + ", " + fmt(brdf::kMaxRoughness) + "] (got " + fmt(v) +
                              ")");
     }
-    p.roughness = roughness(in, "roughness", usesRoughness);
-    if (in.given("roughness_y")) {
+    p.roughness = roughness(in, kRoughness, usesRoughness);
+    if (in.given(kRoughnessY)) {
         if (!brdf::allowsAnisotropy(p.model))
-            throw InputError(in.where("roughness_y") + ": anisotropy needs --model beckmann or ggx (got '" +
-                             in.text("model") + "')");
-        p.roughnessY = roughness(in, "roughness_y", true);
+            throw InputError(in.where(kRoughnessY) + ": anisotropy needs --model beckmann or ggx (got '" +
+                             in.text(kModel) + "')");
+        p.roughnessY = roughness(in, kRoughnessY, true);
         if (purpose == Purpose::Brdf && *p.roughnessY < brdf::kMinIntegrableRoughness)
-            throw InputError(in.where("roughness_y") + ": must be a finite number in [" +
+            throw InputError(in.where(kRoughnessY) + ": must be a finite number in [" +
                              fmt(brdf::kMinIntegrableRoughness) + ", " + fmt(brdf::kMaxRoughness) + "] (got " +
                              fmt(*p.roughnessY) + ")");
     }
-    const bool table = in.given("ndf_table");
+    const bool table = in.given(kNdfTable);
     if (p.model == brdf::Model::Tabulated && !table)
-        throw InputError(in.where("model") + " tabulated: needs --ndf-table FILE (rows 'theta_h_deg, D')");
+        throw InputError(in.where(kModel) + " tabulated: needs --ndf-table FILE (rows 'theta_h_deg, D')");
     if (table && p.model != brdf::Model::Tabulated)
-        throw InputError(in.where("ndf_table") + ": the table is the NDF of --model tabulated (got --model " +
-                         in.text("model") + ")");
-    if (table) p.ndfTable = brdf::loadNdfTable(in.text("ndf_table"));
+        throw InputError(in.where(kNdfTable) + ": the table is the NDF of --model tabulated (got --model " +
+                         in.text(kModel) + ")");
+    if (table) p.ndfTable = brdf::loadNdfTable(in.text(kNdfTable));
     resolveFresnel(in, p, spectralStepNm);
-    if (in.given("measured")) {
-        p.measured = brdf::merl::load(in.text("measured"), in.where("measured"));
+    if (in.given(kMeasured)) {
+        p.measured = brdf::merl::load(in.text(kMeasured), in.where(kMeasured));
         p.model = brdf::Model::None;  // no analytic term runs: evaluate() and the shader use the table alone
         p.fresnel = brdf::Fresnel::None;
         p.diffuse = brdf::Diffuse::None;
@@ -249,7 +257,7 @@ void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Pa
     const bool ms = p.multiscatter != brdf::Multiscatter::None, coupled = p.diffuse == brdf::Diffuse::Coupled;
     if (ms || coupled) {  // the albedo tables of the energy terms, integrated (and cached) here
         const std::string w =
-            ms ? in.where("multiscatter") + " " + in.text("multiscatter") : in.where("diffuse") + " coupled";
+            ms ? in.where(kMultiscatter) + " " + in.text(kMultiscatter) : in.where(kDiffuse) + " coupled";
         try {
             p.energy = cachedEnergyTables(p);
         } catch (const std::invalid_argument& e) {
@@ -260,11 +268,11 @@ void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Pa
 
 /// The scene's cross-parameter rules: what a .brdf file and a bump field can be combined with.
 void checkScene(const Reader& in, const render::Scene& s) {
-    if (in.given("param") && !s.brdfFile)
-        throw InputError(in.where("param") +
+    if (in.given(kParam) && !s.brdfFile)
+        throw InputError(in.where(kParam) +
                          ": only with --brdf FILE (built-in models take --exponent, --roughness, ...)");
     if (!s.surface.bumps) return;
-    const std::string w = in.where("bumps");
+    const std::string w = in.where(kBumps);
     if (s.brdf.measured)
         throw InputError(w +
                          ": the bump field's facets take a slope distribution; a measured table has none "
@@ -279,7 +287,7 @@ void checkScene(const Reader& in, const render::Scene& s) {
     if (s.brdf.multiscatter != brdf::Multiscatter::None)
         throw InputError(w + ": the bump render's facets are mirrors lit once (drop --multiscatter)");
     if (s.surface.filter == render::BumpFilter::Moments && s.brdf.model != brdf::Model::Beckmann)
-        throw InputError(in.where("bump_filter") +
+        throw InputError(in.where(kBumpFilter) +
                          " moments: the prefilter's Gaussian is the slope distribution of beckmann bumps only (ggx "
                          "bumps are a remapped normal map; use supersample or auto)");
 }
@@ -291,12 +299,12 @@ void checkLight(const Reader& in, const render::Light& l, const std::vector<doub
     // Like every parameter, a light's size given to a light without one is checked and unused (`explain` writes
     // every key of the resolved scene, and its output must read back).
     if (!l.area()) return;
-    const std::string w = in.where("light") + " " + render::toString(l.type);
-    if (in.given("brdf"))
-        throw InputError(w + ": not with " + in.where("brdf") +
+    const std::string w = in.where(kLight) + " " + render::toString(l.type);
+    if (in.given(kBrdf))
+        throw InputError(w + ": not with " + in.where(kBrdf) +
                          " (a .brdf file has no CPU twin to check the light's "
                          "quadrature against; use a point or directional light)");
-    if (in.given("bumps") && in.text("bumps") == "explicit")
+    if (in.given(kBumps) && in.text(kBumps) == "explicit")
         throw InputError(w + ": not with --bumps explicit (the bump render is lit by its own Gaussian sun, --sun)");
     if (l.type != render::LightType::Sphere) return;
     for (double a : angles) {
@@ -304,7 +312,7 @@ void checkLight(const Reader& in, const render::Light& l, const std::vector<doub
         cosSinDeg(a, c, unused);
         const double height = l.distance * c;
         if (!(l.radius < height))
-            throw InputError(in.where("light_radius") + ": a sphere of radius " + fmt(l.radius) + " at distance " +
+            throw InputError(in.where(kLightRadius) + ": a sphere of radius " + fmt(l.radius) + " at distance " +
                              fmt(l.distance) + " and incidence " + fmt(a) + " deg reaches the plane (its centre is " +
                              fmt(height) + " above it): the radius must be below " + fmt(height));
     }
@@ -314,15 +322,15 @@ void checkLight(const Reader& in, const render::Light& l, const std::vector<doub
 /// here, before anything is written, not when the context is made).
 int gpuIndex(const Reader& in, gl::Backend backend) {
     if (backend != gl::Backend::EGLDevice && backend != gl::Backend::Auto)
-        throw InputError(in.where("gpu") + ": only with --gl-backend egl-device or auto (got " + gl::toString(backend) +
+        throw InputError(in.where(kGpu) + ": only with --gl-backend egl-device or auto (got " + gl::toString(backend) +
                          ")");
     // The range in the message is this machine's devices, not the registry's bound, so it is checked here.
-    const std::string t = in.values().text("gpu");
+    const std::string t = in.values().text(kGpu.text);
     const auto v = parseNumber(t);
     std::string why;
     const size_t count = gl::eglDevices(why).size();
     if (!v || *v < 0 || *v != std::floor(*v) || !(*v < double(count)))
-        throw InputError(in.where("gpu") + ": must be a whole number in [0, " + std::to_string(count) + ") (got '" + t +
+        throw InputError(in.where(kGpu) + ": must be a whole number in [0, " + std::to_string(count) + ") (got '" + t +
                          "'; " + (count ? std::to_string(count) + " EGL devices here" : why) + ")");
     return int(*v);
 }
@@ -337,29 +345,28 @@ void checkMeasurement(const Reader& in, const Resolved& r) {
             "--reference: no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU); the GL "
             "measurement reports error_estimate from resolution convergence instead");
     if (r.tolerance > 0 && r.reference)
-        throw InputError(in.where("tolerance") + ": not with --reference (the reference has no settings to choose)");
+        throw InputError(in.where(kTolerance) + ": not with --reference (the reference has no settings to choose)");
     if (scene.brdfFile && r.setup.cpu)
-        throw InputError(in.where("renderer") +
-                         " cpu: the CPU path cannot run a .brdf file's GLSL (use --renderer gl)");
+        throw InputError(in.where(kRenderer) + " cpu: the CPU path cannot run a .brdf file's GLSL (use --renderer gl)");
     if (scene.brdfFile && r.setup.supersample > 1)
-        throw InputError(in.where("supersample") +
+        throw InputError(in.where(kSupersample) +
                          ": a .brdf file is framed blind and measured at one sample per "
                          "pixel with the sub-pixel boundary (its error estimate comes from "
                          "resolution convergence)");
     if (scene.brdfFile && r.tolerance > 0)
-        throw InputError(in.where("tolerance") +
+        throw InputError(in.where(kTolerance) +
                          ": needs the CPU twin to estimate errors, which a .brdf file does not "
                          "have (its measurement reports error_estimate from resolution "
                          "convergence instead)");
     // A bump field renders on the GL path only; the CPU path would silently measure the analytic BRDF instead.
     if (scene.surface.bumps && r.setup.cpu)
-        throw InputError(in.where("renderer") +
+        throw InputError(in.where(kRenderer) +
                          " cpu: the CPU path renders the analytic BRDF, not a bump field (drop "
                          "--bumps explicit, or use --renderer gl)");
     // --tolerance predicts the error of a size from the analytic lobe's convergence; a bump field's image changes
     // with the size itself (its period is set in pixels), so the prediction would not hold.
     if (scene.surface.bumps && r.tolerance > 0)
-        throw InputError(in.where("tolerance") +
+        throw InputError(in.where(kTolerance) +
                          ": calibrated on analytic lobes; a bump field's render changes with "
                          "the size (--bump-period-px is in pixels): choose --size and "
                          "--bump-samples instead");
@@ -378,12 +385,11 @@ Resolved resolve(const Values& values, Purpose purpose) {
     for (const Param& p : registry())
         if (p.write) p.write(r, in.text(p));
     resolveBrdf(in, purpose, r.spectralStepNm, s.brdf);
-    if (s.brdf.measured && in.given("brdf"))  // before reading the .brdf: the combination is the error
-        throw InputError(in.where("measured") + ": not with " + in.where("brdf") +
-                         " (each is the whole BRDF: give one)");
-    if (in.given("brdf")) {
-        auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(in.text("brdf")));
-        for (const auto& a : values.list("param")) {
+    if (s.brdf.measured && in.given(kBrdf))  // before reading the .brdf: the combination is the error
+        throw InputError(in.where(kMeasured) + ": not with " + in.where(kBrdf) + " (each is the whole BRDF: give one)");
+    if (in.given(kBrdf)) {
+        auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(in.text(kBrdf)));
+        for (const auto& a : values.list(kParam.text)) {
             try {
                 brdf_file::assign(*file, a.text);
             } catch (const InputError& e) {  // from a scene or experiment file: its line first, then the .brdf's
@@ -394,19 +400,19 @@ Resolved resolve(const Values& values, Purpose purpose) {
         s.brdfFile = std::move(file);
     }
     checkScene(in, s);
-    r.angles = in.angles("incidence");
+    r.angles = in.angles(kIncidence);
     s.light.incidenceDeg = r.angles.front();
     checkLight(in, s.light, r.angles);
 
-    in.size("size", r.setup.width, r.setup.height);
+    in.size(kSize, r.setup.width, r.setup.height);
     // r.fovDeg 0: automatic (the registry refuses a given 0)
     if (purpose == Purpose::Measure && r.fovDeg > 160)
-        throw InputError(in.where("fov") + ": fixed framing takes a field of view in (0, 160] (got " + fmt(r.fovDeg) +
+        throw InputError(in.where(kFov) + ": fixed framing takes a field of view in (0, 160] (got " + fmt(r.fovDeg) +
                          ")");
     r.setup.fovDeg = r.fovDeg;
     if (r.view == View::Photo && r.elevationDeg == 0.0)  // a valid view, but a black image needs saying why
-        warnOnce(in.where("elevation") + " 0: the camera lies in the plane and sees it edge-on: no surface in view");
-    if (in.given("gpu")) r.gpu = gpuIndex(in, backendOf(r.backend));
+        warnOnce(in.where(kElevation) + " 0: the camera lies in the plane and sees it edge-on: no surface in view");
+    if (in.given(kGpu)) r.gpu = gpuIndex(in, backendOf(r.backend));
     // The light's rule takes a quarter of the error budget: its radiance error moves the contour by about as much
     // relative to the lobe's width (render/area_light.hpp).
     if (r.tolerance > 0) s.light.ruleTarget = 0.25 * r.tolerance;
@@ -422,15 +428,15 @@ gl::Backend backendOf(const std::string& name) {
 
 brdf::Params resolveFresnel(Values v, bool spectral) {
     if (spectral) {
-        if (!brdf::hasSpectralData(v.text("material")))
+        if (!brdf::hasSpectralData(v.text(kMaterial.text)))
             throw InputError("--spectral: measured spectra exist for --material copper and gold only");
-        if (v.given("fresnel") && v.text("fresnel") != "spectral")
-            throw InputError("--spectral: conflicts with " + v.where("fresnel") + " " + v.text("fresnel"));
-        v.set("fresnel", "spectral", "--spectral");
+        if (v.given(kFresnel.text) && v.text(kFresnel.text) != "spectral")
+            throw InputError("--spectral: conflicts with " + v.where(kFresnel.text) + " " + v.text(kFresnel.text));
+        v.set(kFresnel.text, "spectral", "--spectral");
     }
     const brdf::Params p = resolve(v, Purpose::Brdf).scene.brdf;
     if (p.fresnel == brdf::Fresnel::None)
-        throw InputError(v.where("fresnel") +
+        throw InputError(v.where(kFresnel.text) +
                          ": give --material NAME or --fresnel schlick|dielectric|conductor|spectral");
     return p;
 }

@@ -128,3 +128,12 @@ TEST_CASE("scene::registry choices come from name tables: each name writes a val
     CHECK(scene::find("bump_filter")->choices == namesIn(render::kBumpFilters));
     CHECK(scene::find("view")->choices == namesIn(scene::kViews));
 }
+
+TEST_CASE("scene::kNames, the names the compiler checks (scene::Name), are the registry's, in order") {
+    std::vector<std::string> names, listed(std::begin(scene::kNames), std::end(scene::kNames));
+    for (const scene::Param& p : scene::registry()) names.push_back(p.name);
+    CHECK(names == listed);
+    static_assert(scene::Name("roughness_y").text[0] == 'r');
+    // scene::Name("roughnes") in a constant expression does not compile: the check throws.
+    CHECK_THROWS_AS(scene::Name(std::string("roughnes").c_str()), std::logic_error);
+}

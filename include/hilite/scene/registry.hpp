@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,79 @@ enum class Kind {
     Angles,   ///< one angle in [lo, hi], a list A,B,C or a range START:STOP:STEP (inclusive)
     Size,     ///< PX or WxH, each a whole number in [lo, hi]
     List,     ///< repeated NAME=VALUE assignments, in order (the .brdf --param)
+};
+
+/// Every parameter's name, in the registry's order (test_registry_defaults checks the entries against it), so
+/// that code naming a parameter is checked by the compiler: `constexpr Name kEta{"eta"}` does not compile for a
+/// name that is not here.
+inline constexpr const char* kNames[] = {"model",
+                                         "exponent",
+                                         "roughness",
+                                         "roughness_y",
+                                         "tangent_angle",
+                                         "fresnel",
+                                         "material",
+                                         "spectral_fresnel",
+                                         "eta",
+                                         "k",
+                                         "f0",
+                                         "geometry",
+                                         "multiscatter",
+                                         "diffuse",
+                                         "albedo",
+                                         "sigma",
+                                         "ndf_table",
+                                         "measured",
+                                         "brdf",
+                                         "param",
+                                         "incidence",
+                                         "azimuth",
+                                         "light",
+                                         "irradiance",
+                                         "intensity",
+                                         "light_distance",
+                                         "light_radius",
+                                         "light_angle",
+                                         "light_rings",
+                                         "size",
+                                         "fov",
+                                         "view",
+                                         "elevation",
+                                         "distance",
+                                         "gl_backend",
+                                         "gpu",
+                                         "shader_timeout",
+                                         "bumps",
+                                         "bump_period_px",
+                                         "bump_seed",
+                                         "bump_samples",
+                                         "sun",
+                                         "bump_filter",
+                                         "prefilter_check",
+                                         "threshold",
+                                         "min_pixels",
+                                         "boundary",
+                                         "supersample",
+                                         "renderer",
+                                         "crop",
+                                         "aim_size",
+                                         "tolerance",
+                                         "reference"};
+
+constexpr bool sameText(const char* a, const char* b) {
+    while (*a && *a == *b) ++a, ++b;
+    return *a == *b;
+}
+
+/// A parameter's name, checked against kNames: a constexpr Name with a misspelt name is a compile error (the
+/// throw is not a constant expression).
+struct Name {
+    const char* text;
+    constexpr explicit Name(const char* s) : text(s) {
+        bool known = false;
+        for (const char* n : kNames) known = known || sameText(n, s);
+        if (!known) throw std::logic_error("not a registry parameter");
+    }
 };
 
 struct Param {
