@@ -26,8 +26,8 @@ namespace hilite::scene {
 
 namespace {
 
-// The parameters resolve() combines by hand (the others write their own fields: Param::write), each name
-// checked by the compiler.
+// The parameters resolve() reads, combines or names in a message by hand (every entry with a field writes it
+// itself: Param::write), each name checked by the compiler (scene::Name).
 constexpr Name kBrdf{"brdf"}, kBumpFilter{"bump_filter"}, kBumps{"bumps"}, kDiffuse{"diffuse"}, kElevation{"elevation"},
     kEta{"eta"}, kF0{"f0"}, kFov{"fov"}, kFresnel{"fresnel"}, kGpu{"gpu"}, kIncidence{"incidence"}, kK{"k"},
     kLight{"light"}, kLightRadius{"light_radius"}, kMaterial{"material"}, kMeasured{"measured"}, kModel{"model"},
