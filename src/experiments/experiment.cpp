@@ -399,12 +399,7 @@ void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     o.f0 = f.boolean("f0", false);
     o.geometry = f.string("geometry", "");
     o.fresnel = f.string("fresnel", "");
-    if (f.node("max_evaluations")) {
-        const auto n = f.numbers("max_evaluations");
-        if (n.size() != 1 || !(n[0] >= 1 && n[0] <= 10000) || n[0] != std::floor(n[0]))
-            f.fail("max_evaluations", "an integer in [1, 10000]");
-        o.maxEvaluations = int(n[0]);
-    }
+    o.maxEvaluations = wholeNumber(f, "max_evaluations", 1, 10000, o.maxEvaluations);  // documented as an integer
     try {
         checkFitOptions(o);
     } catch (const InputError& err) {  // "--models: ..." as the flag says it: here the key says it

@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
+#include <set>
 #include <sstream>
 
 namespace hilite::experiments {
@@ -72,34 +74,106 @@ std::vector<nlohmann::json> readRows(const std::string& path) {
     return rows;
 }
 
-std::string fingerprint(const Experiment& e, const Configuration& c) {
-    auto values = [](const scene::Values& v) {
-        std::string t;
-        for (const auto& [name, value] : v.given()) {
-            const scene::Param* p = scene::find(name);
-            if (p && p->kind == scene::Kind::List) {
-                for (const auto& one : v.list(name)) t += name + "[]=" + one.text + "\n";
-                continue;
-            }
-            std::string text = value.text;
-            if (p && p->kind == scene::Kind::Path && !text.empty()) {  // the same file however the run named it
-                std::error_code ec;
-                const auto abs = std::filesystem::weakly_canonical(text, ec);
-                if (!ec) text = abs.string();
-            }
-            t += name + "=" + text + "\n";
-        }
-        return t;
-    };
-    std::string text = values(c.values) + "reference:\n" + values(c.reference) + "tags:" + c.tags.dump() + "\n";
-    text += "timing:" + std::to_string(e.timing) + "," + std::to_string(e.repeats) + "," + std::to_string(e.warmup) +
-            " reference_errors:" + std::to_string(e.referenceErrors) + " match:" + std::to_string(e.matching) + "\n" +
-            values(e.match);
-    uint64_t h = 1469598103934665603ull;  // FNV-1a 64 (Fowler, Noll, Vo): fast, stable across platforms
-    for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
+namespace {
+
+uint64_t fnv1a(const char* data, size_t n, uint64_t h = 1469598103934665603ull) {
+    for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ull;
+    return h;
+}
+
+std::string hex16(uint64_t h) {
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016" PRIx64, h);
     return hex;
+}
+
+/// The contents' hash of a data file (FNV-1a 64), computed once per path, size and modification time in a
+/// process; "unreadable" when it cannot be read (resolving the scene refuses it then, naming the key).
+std::string contentsHash(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(path, ec);
+    const auto size = fs::file_size(p, ec);
+    if (ec) return "unreadable";
+    const auto mtime = fs::last_write_time(p, ec).time_since_epoch().count();
+    if (ec) return "unreadable";
+    static std::mutex mutex;
+    static std::map<std::string, std::string> cache;
+    const std::string key = p.string() + "|" + std::to_string(size) + "|" + std::to_string(mtime);
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (auto it = cache.find(key); it != cache.end()) return it->second;
+    }
+    std::ifstream in(p, std::ios::binary);
+    if (!in) return "unreadable";
+    uint64_t h = 1469598103934665603ull;
+    std::vector<char> buf(1 << 20);
+    while (in.read(buf.data(), std::streamsize(buf.size())) || in.gcount() > 0) {
+        h = fnv1a(buf.data(), size_t(in.gcount()), h);
+        if (!in) break;
+    }
+    const std::string out = hex16(h) + ":" + std::to_string(size);
+    const std::lock_guard<std::mutex> lock(mutex);
+    return cache.emplace(key, out).first->second;
+}
+
+/// Every given value as text (List parameters in order), data-file paths made absolute and followed by their
+/// contents' hash: the same file however the run named it, and a file edited since is another input.
+std::string valuesText(const scene::Values& v) {
+    std::string t;
+    for (const auto& [name, value] : v.given()) {
+        const scene::Param* p = scene::find(name);
+        if (p && p->kind == scene::Kind::List) {
+            for (const auto& one : v.list(name)) t += name + "[]=" + one.text + "\n";
+            continue;
+        }
+        std::string text = value.text;
+        if (p && p->kind == scene::Kind::Path && !text.empty()) {
+            std::error_code ec;
+            const auto abs = std::filesystem::weakly_canonical(text, ec);
+            if (!ec) text = abs.string();
+            text += " #" + contentsHash(text);
+        }
+        t += name + "=" + text + "\n";
+    }
+    return t;
+}
+
+std::string numbersText(const std::vector<double>& v) {
+    std::string t;
+    for (double x : v) t += exactText(x) + ",";
+    return t;
+}
+
+/// [fit]: every option of the fit (experiments/fit.hpp FitOptions), so an edited [fit] is another experiment.
+std::string fitText(const FitOptions& o) {
+    std::string t = "fit: models=";
+    for (const auto& m : o.models) t += m + ",";
+    return t + " thresholds=" + numbersText(o.thresholds) + " weights=" + numbersText(o.weights) +
+           " anisotropy=" + std::to_string(o.anisotropy) + " f0=" + std::to_string(o.f0) + " geometry=" + o.geometry +
+           " fresnel=" + o.fresnel + " xtol=" + exactText(o.xtolAbs) +
+           " max_evaluations=" + std::to_string(o.maxEvaluations) + "\n";
+}
+
+/// [bounces]: every setting of the study (experiments/bounces.hpp BounceSettings).
+std::string bouncesText(const BounceSettings& s) {
+    const micro::BounceOptions& o = s.options;
+    return std::string("bounces: surface=") + micro::toString(o.surface) + " paths=" + std::to_string(o.paths) +
+           " batches=" + std::to_string(o.batches) + " seed=" + std::to_string(o.seed) +
+           " step=" + exactText(o.stepTexels) + " texels=" + std::to_string(s.texels) +
+           " bumps_per_tile=" + std::to_string(s.bumpsPerTile) + "\n";
+}
+
+}  // namespace
+
+std::string fingerprint(const Experiment& e, const Configuration& c) {
+    std::string text = valuesText(c.values) + "reference:\n" + valuesText(c.reference) + "tags:" + c.tags.dump() + "\n";
+    text += "timing:" + std::to_string(e.timing) + "," + std::to_string(e.repeats) + "," + std::to_string(e.warmup) +
+            " reference_errors:" + std::to_string(e.referenceErrors) + " match:" + std::to_string(e.matching) + "\n" +
+            valuesText(e.match);
+    if (e.fit) text += fitText(*e.fit);
+    if (e.bounces) text += bouncesText(*e.bounces);
+    return hex16(fnv1a(text.data(), text.size()));  // FNV-1a 64 (Fowler, Noll, Vo): fast, stable across platforms
 }
 
 namespace {
@@ -183,13 +257,11 @@ std::string csvField(const nlohmann::json& v) {
         return buf;
     }
     if (v.is_number() || v.is_boolean()) return v.dump();
-    if (v.is_array()) {
-        std::string s;
+    std::string s;
+    if (v.is_array())  // flags: "horizon_cut;non_finite:a,b", quoted below like any text with a comma
         for (const auto& x : v) s += (s.empty() ? "" : ";") + (x.is_string() ? x.get<std::string>() : x.dump());
-        return s;
-    }
-    std::string s = v.is_string() ? v.get<std::string>() : v.dump();
-    if (s.find_first_of(",\"\n") != std::string::npos) {
+    else s = v.is_string() ? v.get<std::string>() : v.dump();
+    if (s.find_first_of(",\"\n\r") != std::string::npos) {  // RFC 4180
         std::string q = "\"";
         for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
         return q + "\"";
@@ -229,17 +301,21 @@ void ResultsWriter::writeAll(const std::string& dir, const std::vector<std::stri
     io::writeFileAtomic(dir + "/results.csv", csv);
 }
 
+std::vector<nlohmann::json> resumedRows(const std::string& dir, const Experiment& e, const Configurations& configs) {
+    std::vector<nlohmann::json> kept = readRows(dir + "/results.jsonl");
+    checkRows(kept, dir + "/results.jsonl", e, configs);  // before anything is rewritten
+    std::set<long> seen;
+    for (const auto& r : kept)
+        if (!seen.insert(r["config"].get<long>()).second)
+            throw InputError(dir + "/results.jsonl: configuration " + r["config"].dump() + " appears twice");
+    return kept;
+}
+
 ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::string>& columns, bool resume,
                              const Experiment& e, const Configurations& configs)
     : m_columns(columns), m_dir(dir) {
-    std::vector<nlohmann::json> kept;
-    if (resume) {
-        kept = readRows(dir + "/results.jsonl");
-        checkRows(kept, dir + "/results.jsonl", e, configs);  // before anything is rewritten
-    }
-    for (const auto& r : kept)
-        if (!m_done.insert(r["config"].get<long>()).second)
-            throw InputError(dir + "/results.jsonl: configuration " + r["config"].dump() + " appears twice");
+    const std::vector<nlohmann::json> kept = resume ? resumedRows(dir, e, configs) : std::vector<nlohmann::json>{};
+    for (const auto& r : kept) m_done.insert(r["config"].get<long>());
     // Rewrite both files from the complete rows (in their original order), then append to them.
     std::string jsonl, csv = header(columns);
     for (const auto& r : kept) {

@@ -32,13 +32,14 @@ std::vector<nlohmann::json> parseRows(const std::string& text, const std::string
 /// "non_finite:<fields>" flag names it (the measurement broke down there; the other flags may say why).
 void nameNonFinite(nlohmann::json& row);
 
-/// CSV text of one value: numbers as %.10g, strings quoted when needed, arrays joined with ';'.
+/// CSV text of one value: numbers as %.10g, arrays joined with ';', text quoted when it holds a comma, quote or
+/// line break (RFC 4180).
 std::string csvField(const nlohmann::json& v);
 
 /// The fingerprint of what configuration `c` of `e` measures (16 hex digits, FNV-1a 64 of a canonical text:
-/// every scene value the configuration sets, data-file paths made absolute, its case's reference keys and
-/// tags, and the experiment's [timing], [reference] and [match] settings; not the file's text, comments or
-/// the order of its keys).
+/// every scene value the configuration sets, data-file paths made absolute with their contents' hash, its case's
+/// reference keys and tags, and the experiment's [timing], [reference], [match], [fit] and [bounces] settings;
+/// not the experiment file's text, comments or the order of its keys).
 std::string fingerprint(const Experiment& e, const Configuration& c);
 
 /// Checks that every row of `rows` (read from `file`) was measured by the configuration of `configs` it
@@ -46,6 +47,10 @@ std::string fingerprint(const Experiment& e, const Configuration& c);
 /// shows it, the value that differs ("... was measured with roughness = 0.1, the experiment now says 0.2").
 void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file, const Experiment& e,
                const Configurations& configs);
+
+/// The rows --resume keeps of `dir`/results.jsonl: read, checked against the experiment (checkRows) and each
+/// configuration at most once; InputError naming the file and line otherwise. Nothing is written.
+std::vector<nlohmann::json> resumedRows(const std::string& dir, const Experiment& e, const Configurations& configs);
 
 class ResultsWriter {
 public:

@@ -70,7 +70,9 @@ RunSummary runExperiment(const RunOptions& o) {
     ExperimentRunner runner(exp, o.backend);
     runner.probeAll(configs, o.shardK, o.shardN);  // a .brdf that does not build or runs too long: nothing written
     checkResultFolder(s.dir, o.outName);
-    if (o.check) {
+    if (o.check) {  // what the run would refuse next: a folder another run holds, rows --resume would not keep
+        io::checkUnlocked(s.dir, o.outName);
+        if (o.resume) resumedRows(s.dir, exp, configs);
         s.configurations = configs.size();
         return s;
     }
@@ -85,7 +87,15 @@ RunSummary runExperiment(const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     for (size_t i = first; i < configs.size(); i += stride) {
         if (writer.done().count(long(i))) continue;
-        writer.append(runner.measure(configs[i]));
+        try {
+            writer.append(runner.measure(configs[i]));
+        } catch (const InputError& e) {  // a file changed after validation: the rows written are kept, say so
+            const size_t kept = writer.done().size();  // resumed and appended
+            if (kept == 0) throw;
+            throw InputError(std::string(e.what()) + " (configuration " + std::to_string(i) + "; " +
+                             std::to_string(kept) + (kept == 1 ? " row" : " rows") + " kept in " + s.dir +
+                             ": fix it and rerun with --resume)");
+        }
         ++s.measured;
         if (o.progress) o.progress(s.measured, todo, since(t0));
     }

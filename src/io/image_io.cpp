@@ -74,6 +74,7 @@ void syncDir(const std::string& dir) {
 
 void checkWritable(const std::string& path, const std::string& flag) {
     if (path.empty()) throw InputError(flag + ": empty output path");
+    if (path.find('\0') != std::string::npos) throw InputError(flag + ": a file name cannot contain a NUL character");
     if (path.back() == '/') throw InputError(flag + ": '" + path + "' is a directory, not a file");
     const std::string dir = directoryOf(path);
     struct stat st {};
@@ -154,24 +155,33 @@ void DurableAppender::sync() {
     if (::fsync(m_fd) != 0) throw SystemError("cannot write '" + m_path + "': " + errnoText());
 }
 
+namespace {
+
+/// Closes `fd` (whose flock failed with `err`) and throws: busy names the holder's pid, else the error.
+[[noreturn]] void lockRefused(int fd, int err, const std::string& dir, const std::string& flag) {
+    const std::string why = std::strerror(err);
+    char pid[32] = {};
+    const ssize_t n = ::pread(fd, pid, sizeof pid - 1, 0);
+    ::close(fd);
+    std::string holder = n > 0 ? std::string(pid, size_t(n)) : "";
+    while (!holder.empty() && (holder.back() == '\n' || holder.back() == ' ')) holder.pop_back();
+    if (err == EWOULDBLOCK)
+        throw InputError(flag + ": '" + dir + "' is being written by another hilite run or merge" +
+                         (holder.empty() ? "" : " (pid " + holder + ")") +
+                         "; wait for it to finish or choose another folder");
+    throw InputError(flag + ": cannot lock '" + dir + "': " + why);
+}
+
+}  // namespace
+
 FolderLock::FolderLock(const std::string& dir, const std::string& flag) {
     const std::string path = dir + "/.hilite.lock";
     m_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (m_fd < 0) throw InputError(flag + ": cannot lock '" + dir + "' (" + path + ": " + errnoText() + ")");
     if (::flock(m_fd, LOCK_EX | LOCK_NB) != 0) {
-        const bool busy = errno == EWOULDBLOCK;
-        const std::string why = errnoText();
-        char pid[32] = {};
-        const ssize_t n = ::pread(m_fd, pid, sizeof pid - 1, 0);
-        ::close(m_fd);
+        const int fd = m_fd;
         m_fd = -1;
-        std::string holder = n > 0 ? std::string(pid, size_t(n)) : "";
-        while (!holder.empty() && (holder.back() == '\n' || holder.back() == ' ')) holder.pop_back();
-        if (busy)
-            throw InputError(flag + ": '" + dir + "' is being written by another hilite run or merge" +
-                             (holder.empty() ? "" : " (pid " + holder + ")") +
-                             "; wait for it to finish or choose another folder");
-        throw InputError(flag + ": cannot lock '" + dir + "': " + why);
+        lockRefused(fd, errno, dir, flag);
     }
     const std::string me = std::to_string(getpid()) + "\n";
     if (::ftruncate(m_fd, 0) == 0) {
@@ -181,6 +191,15 @@ FolderLock::FolderLock(const std::string& dir, const std::string& flag) {
 
 FolderLock::~FolderLock() {
     if (m_fd >= 0) ::close(m_fd);  // closing releases the flock
+}
+
+void checkUnlocked(const std::string& dir, const std::string& flag) {
+    const std::string path = dir + "/.hilite.lock";
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0) return;  // never locked (or not a folder yet): nothing holds it
+    // A shared lock is refused while a run or merge holds the exclusive one, and released at once here.
+    if (::flock(fd, LOCK_SH | LOCK_NB) != 0) lockRefused(fd, errno, dir, flag);
+    ::close(fd);
 }
 
 void writePng(const std::string& path, const ImageF& img, const Exposure& e) {

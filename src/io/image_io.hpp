@@ -74,4 +74,8 @@ private:
     int m_fd = -1;
 };
 
+/// InputError as FolderLock's when another run or merge holds `dir`'s lock now; takes no lock and writes
+/// nothing (`run --check`).
+void checkUnlocked(const std::string& dir, const std::string& flag);
+
 }  // namespace hilite::io
