@@ -330,12 +330,16 @@ std::string targetText(const scene::Values& v) {
 
 void checkFitOptions(const FitOptions& o) {
     if (o.models.empty()) throw InputError("--models: give at least one model (phong, blinn, beckmann, ggx, ...)");
-    for (const std::string& m : o.models) {
+    for (size_t i = 0; i < o.models.size(); ++i) {
+        const std::string& m = o.models[i];
         const auto model = brdf::parseModel(m);
         if (!model || *model == brdf::Model::None || *model == brdf::Model::Tabulated)
             throw InputError("--models: '" + m +
                              "' is not a model with a width to fit (allowed: phong, phong-classic, "
                              "retro, blinn, gaussian, beckmann, ggx)");
+        // A model twice would be fitted twice and ranked against itself.
+        if (std::find(o.models.begin(), o.models.begin() + long(i), m) != o.models.begin() + long(i))
+            throw InputError("--models: '" + m + "' is given twice");
     }
     if (o.thresholds.empty()) throw InputError("--thresholds: give at least one threshold in (0, 1)");
     for (double t : o.thresholds)

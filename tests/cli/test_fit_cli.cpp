@@ -19,6 +19,7 @@ TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, n
     const Case cases[] = {
         {"--model ggx --models phong,foo", "--models: 'foo' is not a model"},
         {"--model ggx --models none", "--models: 'none' is not a model"},
+        {"--model ggx --models ggx,beckmann,ggx", "--models: 'ggx' is given twice"},
         {"--model ggx --thresholds 0.1,1.5", "--thresholds: each must be in (0, 1)"},
         {"--model ggx --thresholds 0.1,x", "--thresholds: 'x' is not a number"},
         {"--model ggx --weights 1,2", "--weights: one per threshold (5), got 2"},
