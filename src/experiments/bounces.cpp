@@ -26,6 +26,9 @@ void checkBounceSettings(const BounceSettings& s, bool asFlags) {
     const auto& o = s.options;
     const std::string where = asFlags ? "--" : "";
     const std::string bumps = asFlags ? "--bumps-per-tile" : "bumps_per_tile";
+    // The seed as an experiment file takes it: a negative one given as a flag wraps to above 2^63.
+    if (o.seed > 2147483647u)
+        throw InputError(where + "seed: an integer in [0, 2147483647] (got " + std::to_string(o.seed) + ")");
     if (o.batches < 2 || o.batches > 1000)
         throw InputError(where + "batches: an integer in [2, 1000] (got " + std::to_string(o.batches) + ")");
     if (o.paths < o.batches || o.paths > 100000000)
@@ -89,6 +92,7 @@ double luminance(const dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.
 }  // namespace
 
 std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceSettings& s) {
+    checkBounceSettings(s, false);  // the library's entry point checks as the CLI does (texels 1000 crashed the tile)
     const scene::Resolved r = resolveBounceScene(values);
     scene::Values kcValues = values;
     kcValues.set("geometry", "smith", "bounces");
@@ -112,6 +116,7 @@ std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceS
         st.params = r.scene.brdf;
         st.spec = spec;
         st.surface = s.options.surface;
+        st.pathSeed = s.options.seed;
         st.hermiteRatio = s.options.surface == micro::TracedSurface::Hermite ? micro::hermiteSlopeRatio(field) : 1.0;
         st.traced = micro::traceBounces(field, theta, channels, s.options);
         st.walk = micro::walkSmithBounces(spec.roughness, theta, channels, s.options);
@@ -148,6 +153,7 @@ std::vector<std::pair<std::string, nlohmann::json>> fields(const BounceStudy* s)
     auto at = [](const std::vector<micro::Estimate>& v, size_t k) { return k < v.size() ? v[k] : micro::Estimate{}; };
     add("bounce_surface", s ? micro::toString(s->surface) : "");
     add("bounce_paths", tr.paths);
+    add("bounce_seed", s ? s->pathSeed : uint64_t(0));
     add("bounce_texels", s ? s->spec.texels : 0);
     add("bounce_bumps_per_tile", s ? s->spec.bumpsPerTile : 0);
     add("hermite_ratio", s ? s->hermiteRatio : 0.0);

@@ -3,6 +3,7 @@
 #include "brdf/integrate.hpp"
 #include "core/quadrature.hpp"
 #include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -241,7 +242,24 @@ double lobeScale(const brdf::Params& p, const dvec3& q) {
 
 }  // namespace
 
+namespace {
+
+/// The public radiance queries take what a caller passes (the library, Python): InputError for what they cannot
+/// integrate, never a logic_error or a silent 0.
+void checkRadianceQuery(const Scene& s, const dvec3& p, const dvec3& we, const char* fn) {
+    if (!s.light.area())
+        throw InputError(std::string(fn) + ": the scene's light is " + toString(s.light.type) +
+                         ": only a sphere or disk light has a cap to integrate");
+    const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(we.x) &&
+                        std::isfinite(we.y) && std::isfinite(we.z);
+    if (!finite || !(glm::length(we) > 0.0))
+        throw InputError(std::string(fn) + ": needs a finite point of the plane and a finite exitant direction");
+}
+
+}  // namespace
+
 dvec3 areaRadianceExact(const Scene& s, const dvec3& p, const dvec3& we) {
+    checkRadianceQuery(s, p, we, "areaRadianceExact");
     const LightCap cap = lightCap(s.light, p);
     const dvec3 q = lobeCentre(s.brdf, we);
     auto g = [&](const dvec3& wi) { return wi.z > 0 ? brdf::radiance(s.brdf, wi, we, cap.radiance) : dvec3(0.0); };
@@ -265,6 +283,10 @@ dvec3 areaRadianceExact(const Scene& s, const dvec3& p, const dvec3& we) {
 }
 
 dvec3 areaRadianceRule(const Scene& s, const dvec3& p, const dvec3& we, int rings) {
+    checkRadianceQuery(s, p, we, "areaRadianceRule");
+    if (rings < 1 || rings > kMaxRings)
+        throw InputError("areaRadianceRule: rings must be a whole number in [1, " + std::to_string(kMaxRings) +
+                         "] (got " + std::to_string(rings) + ")");
     const LightCap cap = lightCap(s.light, p);
     auto g = [&](const dvec3& wi) { return wi.z > 0 ? brdf::radiance(s.brdf, wi, we, cap.radiance) : dvec3(0.0); };
     return capRule(cap, rings, g);

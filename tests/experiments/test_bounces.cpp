@@ -96,6 +96,7 @@ TEST_CASE("brdf bounces: one line per incidence with the study's columns") {
             orders += j.at(k).get<double>();
         CHECK(orders == doctest::Approx(1.0).epsilon(1e-9));  // F = 1: every path leaves after some order
         CHECK(j.at("bounce_paths") == 3000);
+        CHECK(j.at("bounce_seed") == 1);  // the paths' seed is a column (the field's is bump_seed)
         CHECK(j.at("smith_single").get<double>() < 1.0);
         CHECK(j.at("kc_albedo_y").get<double>() > j.at("single_albedo_y").get<double>());  // the compensation adds
         CHECK(j.at("traced_chroma2").get<double>() > j.at("traced_chroma1").get<double>());
@@ -176,5 +177,27 @@ TEST_CASE("run with [bounces]: a bad table or scene is one line naming the key, 
         CHECK(oneLine(why));
         CHECK(why.find(c.names) != std::string::npos);
         CHECK(!std::filesystem::exists(dir / "bad_out"));
+    }
+}
+
+TEST_CASE("studyBounces checks its settings as the CLI does: InputError, not a crash") {
+    const scene::Values values = bounceValues("--roughness 0.6 --incidence 30");
+    struct Case {
+        void (*edit)(experiments::BounceSettings&);
+        const char* key;
+    };
+    const Case cases[] = {{[](experiments::BounceSettings& s) { s.texels = 1000; }, "texels: "},  // not a power of 2
+                          {[](experiments::BounceSettings& s) { s.options.paths = 0; }, "paths: "},
+                          {[](experiments::BounceSettings& s) { s.options.batches = 1; }, "batches: "},
+                          {[](experiments::BounceSettings& s) { s.bumpsPerTile = 0; }, "bumps_per_tile: "},
+                          {[](experiments::BounceSettings& s) { s.options.seed = uint64_t(-1); }, "seed: "}};
+    for (const Case& c : cases) {
+        experiments::BounceSettings s;
+        s.texels = 128, s.bumpsPerTile = 8, s.options.paths = 3000;
+        c.edit(s);
+        const std::string r = inputError([&] { experiments::studyBounces(values, s); });
+        CAPTURE(r);
+        CHECK(r.rfind(c.key, 0) == 0);
+        CHECK(r.find('\n') == std::string::npos);
     }
 }

@@ -7,6 +7,7 @@
 #include "brdf/integrate.hpp"
 #include "core/quadrature.hpp"
 #include "hilite/brdf/evaluate.hpp"
+#include "hilite/core/error.hpp"
 
 #include <doctest/doctest.h>
 
@@ -186,4 +187,20 @@ TEST_CASE("render::ringRule nodes in (0, 1), weights summing to 1, polynomials i
         CHECK(sum == doctest::Approx(1.0).epsilon(1e-14));
         CHECK(moment == doctest::Approx(1.0 / (2 * n)).epsilon(1e-12));  // degree 2n - 1 is exact
     }
+}
+
+TEST_CASE("render::areaRadiance* refuse what they cannot integrate with an InputError, never a silent 0") {
+    render::Scene s;
+    s.light = diskLight(0.266, 60.0);
+    const dvec3 we = s.light.chart().wr();
+    CHECK_THROWS_WITH_AS(render::areaRadianceRule(s, dvec3(0.0), we, 0),
+                         "areaRadianceRule: rings must be a whole number in [1, 32] (got 0)", InputError);
+    CHECK_THROWS_AS(render::areaRadianceRule(s, dvec3(0.0), we, render::kMaxRings + 1), InputError);
+    CHECK_THROWS_AS(render::areaRadianceExact(s, dvec3(0.0), dvec3(NAN, 0.0, 1.0)), InputError);
+    CHECK_THROWS_AS(render::areaRadianceRule(s, dvec3(NAN), we, 4), InputError);
+    s.light.type = render::LightType::Directional;
+    CHECK_THROWS_WITH_AS(render::areaRadianceExact(s, dvec3(0.0), we),
+                         "areaRadianceExact: the scene's light is directional: only a sphere or disk light has a cap "
+                         "to integrate",
+                         InputError);
 }

@@ -37,6 +37,7 @@ struct BounceStudy {
     brdf::Params params;   ///< the scene's lobe with Smith G2, single scattering
     micro::BumpSpec spec;  ///< the traced field
     micro::TracedSurface surface = micro::TracedSurface::Hermite;
+    uint64_t pathSeed = 1;                   ///< the paths' seed (BounceOptions::seed; the field's is spec.seed)
     double hermiteRatio = 1;                 ///< the traced surface's rms slope over m before its rescale
     micro::BounceTally traced, walk;         ///< the height field; Smith's microsurface
     double smithSingle = 0;                  ///< E(mu): single scattering, F = 1 (brdf::albedo, rational Lambda)
