@@ -271,6 +271,12 @@ void checkScene(const Reader& in, const render::Scene& s) {
     if (in.given(kParam) && !s.brdfFile)
         throw InputError(in.where(kParam) +
                          ": only with --brdf FILE (built-in models take --exponent, --roughness, ...)");
+    // A .brdf file's BRDF() is the whole BRDF: an energy term given with it would be dropped without a word.
+    if (s.brdfFile)
+        for (const Name& n : {kDiffuse, kMultiscatter})
+            if (in.given(n) && in.text(n) != "none")
+                throw InputError(in.where(n) + " " + in.text(n) + ": not with " + in.where(kBrdf) +
+                                 " (its BRDF() is the whole BRDF; write a diffuse term into the file instead)");
     if (!s.surface.bumps) return;
     const std::string w = in.where(kBumps);
     if (s.brdf.measured)

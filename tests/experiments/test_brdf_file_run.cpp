@@ -74,6 +74,17 @@ TEST_CASE("measure --brdf measures as the built-in model, with an error estimate
     // The table's error estimate line: tests/cli/test_cli.cpp.
 }
 
+TEST_CASE("--brdf refuses an energy term it would drop (--diffuse, --multiscatter), naming both flags") {
+    const std::string brdf = kShipped + "ggx.brdf";
+    CHECK(refusal(flags("--brdf " + brdf + " --diffuse coupled")) ==
+          "--diffuse coupled: not with --brdf (its BRDF() is the whole BRDF; write a diffuse term into the file "
+          "instead)");
+    CHECK(refusal(flags("--brdf " + brdf + " --diffuse lambert")).rfind("--diffuse lambert: not with --brdf", 0) == 0);
+    CHECK(refusal(flags("--brdf " + brdf + " --geometry smith --multiscatter kulla-conty"))
+              .rfind("--multiscatter kulla-conty: not with --brdf", 0) == 0);
+    CHECK(refusal(flags("--brdf " + brdf + " --diffuse none")) == "");  // none drops nothing
+}
+
 TEST_CASE(".brdf malformed files: one line with file and line, for measure and render") {
     Dir d;
     struct Case {
