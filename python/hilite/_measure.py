@@ -63,8 +63,11 @@ def _sweep_scenes(base, scalars, sweeps):
     except ValueError:
         raise InputError("the swept keywords' arrays do not broadcast together: " +
                          ", ".join(f"{k} {a.shape}" for k, a in arrays.items())) from None
+    n = int(np.prod(shape, dtype=object)) if shape else 1  # exact: a float product could round a huge grid down
+    if n > _hilite.max_scenes:  # refused before any scene is made, as `hilite run` refuses such an experiment
+        raise InputError(f"the swept keywords give {n} scenes, more than {_hilite.max_scenes} "
+                         "(sweep fewer values, or run an experiment in shards)")
     flat = {k: np.broadcast_to(a, shape).ravel() for k, a in arrays.items()}
-    n = int(np.prod(shape)) if shape else 1
     texts = {k: [scalar_text(PARAMS[k], e.item() if hasattr(e, "item") else e) for e in f] for k, f in flat.items()}
     if list(texts) == ["incidence"]:  # one scene, its angles a list: resolved once
         return [base + scalars + [("incidence", ",".join(texts["incidence"]), "")]]

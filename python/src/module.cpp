@@ -9,6 +9,7 @@
 #include "brdf/bihemispherical.hpp"
 #include "brdf/integrate.hpp"
 #include "core/text.hpp"
+#include "experiments/experiment.hpp"
 #include "experiments/results.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
@@ -354,6 +355,7 @@ PYBIND11_MODULE(_hilite, m) {
     py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
     py::register_exception<SystemError>(m, "MachineError", PyExc_RuntimeError);
     m.attr("version") = kVersionString;
+    m.attr("max_scenes") = experiments::kMaxConfigurations;  // a sweep larger is refused, as `hilite run` does
     m.def("registry", &registryList);
     // the measurement fields of a row, in results.csv's order: the stubs' typed row (python/gen_stubs.py)
     m.def("measurement_columns", &measurement::measurementColumns);

@@ -101,3 +101,24 @@ def test_scene_file_errors_name_file_and_line(hilite, tmp_path):
 def test_eval_refuses_non_unit(hilite):
     with pytest.raises(hilite.InputError, match=r"wi\[1\]"):
         hilite.brdf.eval([[0, 0, 1], [0, 0, 2]], [0, 0, 1])
+
+
+def test_nul_in_a_file_name_is_refused(hilite, tmp_path):
+    # A C string ends at the NUL: "a\0b.toml" would write a, "x.binary\0zz" read x.binary.
+    (tmp_path / "x.binary").write_bytes(b"")
+    with pytest.raises(hilite.InputError, match=r"measured\b.*: a file name cannot contain a NUL character"):
+        hilite.measure(measured=str(tmp_path / "x.binary") + "\0zz")
+    with pytest.raises(hilite.InputError, match="path: a file name cannot contain a NUL character"):
+        hilite.Scene(roughness=0.1).write(str(tmp_path / "a") + "\0b.toml")
+    assert not (tmp_path / "a").exists()
+    (tmp_path / "s.toml").write_text("[material]\nroughness = 0.2\n")
+    with pytest.raises(hilite.InputError, match="a file name cannot contain a NUL character"):
+        hilite.Scene.read(str(tmp_path / "s.toml") + "\0x")
+
+
+def test_a_sweep_larger_than_the_cli_allows_is_refused_at_once(hilite):
+    import numpy as np
+    r = np.linspace(0.05, 0.5, 10000)[:, None]
+    t = np.linspace(0.0, 80.0, 10000)[None, :]  # 10^8 scenes, never made: refused from the arrays' shapes
+    with pytest.raises(hilite.InputError, match=r"give 100000000 scenes, more than 1000000"):
+        hilite.measure(roughness=r, incidence=t)

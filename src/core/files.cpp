@@ -31,6 +31,8 @@ std::string fileKind(mode_t m) {
 void requireRegularFile(const std::string& path, const std::string& what) {
     struct stat st {};
     if (path.empty()) throw InputError(what + ": empty file name");
+    // A C string ends at a NUL: "x.binary\0zz" would read x.binary (the library and Python can pass one).
+    if (path.find('\0') != std::string::npos) throw InputError(what + ": a file name cannot contain a NUL character");
     if (::stat(path.c_str(), &st) != 0)
         throw InputError(what + ": cannot read '" + path + "': " + std::strerror(errno));
     if (!S_ISREG(st.st_mode))

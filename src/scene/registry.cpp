@@ -1302,6 +1302,8 @@ std::string check(const Param& p, const std::string& text) {
             break;
         case Kind::Path:
             if (text.empty()) err = "expected a file name";
+            // A C string ends at a NUL: "x.binary\0zz" would open x.binary (the library and Python can pass one).
+            else if (text.find('\0') != std::string::npos) err = "a file name cannot contain a NUL character";
             break;
         case Kind::Angles:  // the list and range syntax is checked by resolve (scene/resolve.cpp: parseAngles)
         case Kind::Size:
