@@ -488,7 +488,8 @@ std::vector<Param> build() {
          {},
          "",
          "a MERL .binary table (90 x 90 x 180, Matusik 2003): the whole BRDF (lobe, F, G, diffuse), looked up "
-         "multilinearly; replaces --model and its terms (the row's model says measured:FILE; not with any other "
+         "cubic in theta_h and linear in theta_d, phi_d between bin centres (multilinear where a bin lacks data); "
+         "replaces --model and its terms (the row's model says measured:FILE; not with any other "
          "material flag, nor --bumps)",
          "every scene",
          measured,
