@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -257,22 +258,37 @@ MeasuredBrdf read(const std::string& path, const std::string& what) {
 }
 
 std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::string& what) {
+    // Held once: a table anyone still holds is shared (weak entries), and the last kKeep read stay alive for a
+    // sweep that comes back to them (each configuration resolves its scene again); the rest are freed, so memory
+    // stays flat over any number of tables (every table stayed: 40 of them, 400 MB each, ran out of memory).
+    constexpr std::size_t kKeep = 2;
     struct Entry {
         long long size = -1, mtimeNs = -1;
-        std::shared_ptr<const MeasuredBrdf> table;
+        std::weak_ptr<const MeasuredBrdf> table;
     };
     static std::mutex mutex;
     static std::map<std::string, Entry> cache;
+    static std::deque<std::shared_ptr<const MeasuredBrdf>> recent;  // most recent first
     struct stat st {};
     const bool known = ::stat(path.c_str(), &st) == 0;
     const long long size = known ? (long long)st.st_size : -1;
     const long long mtime = known ? (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec : -1;
     std::lock_guard<std::mutex> lock(mutex);
+    auto keep = [&](const std::shared_ptr<const MeasuredBrdf>& t) {
+        recent.erase(std::remove(recent.begin(), recent.end(), t), recent.end());
+        recent.push_front(t);
+        if (recent.size() > kKeep) recent.pop_back();
+    };
     if (auto it = cache.find(path);
         known && it != cache.end() && it->second.size == size && it->second.mtimeNs == mtime)
-        return it->second.table;
+        if (auto held = it->second.table.lock()) {
+            keep(held);
+            return held;
+        }
     auto table = std::make_shared<const MeasuredBrdf>(read(path, what));  // throws before the cache changes
+    for (auto it = cache.begin(); it != cache.end();) it = it->second.table.expired() ? cache.erase(it) : std::next(it);
     cache[path] = Entry{size, mtime, table};
+    keep(table);
     return table;
 }
 
@@ -328,10 +344,12 @@ std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const M
     static std::mutex mutex;
     static std::vector<Entry> cache;
     const std::lock_guard<std::mutex> lock(mutex);
-    cache.erase(std::remove_if(cache.begin(), cache.end(), [](const Entry& e) { return e.table.expired(); }),
+    // Only the halves of the table asked for now are kept (table_error asks for its six in turn, once per row);
+    // another table's go, or they would add 6 tables' worth of memory per table measured.
+    cache.erase(std::remove_if(cache.begin(), cache.end(), [&](const Entry& e) { return e.table.lock() != table; }),
                 cache.end());
     for (const Entry& e : cache)
-        if (e.axis == axis && e.parity == parity && e.table.lock() == table) return e.half;
+        if (e.axis == axis && e.parity == parity) return e.half;
     auto half = std::make_shared<MeasuredBrdf>(*table);
     static const char* const names[] = {"theta_h", "theta_d", "phi_d"};
     half->path = table->path + " (half resolution in " + names[std::clamp(axis, 0, 2)] +

@@ -322,8 +322,16 @@ void Renderer::bindMeasured(const gl::Program& prog, const std::shared_ptr<const
     // Unit 7: past the bump fields' 0-5 (render/bumps.cpp); a measured scene has no bumps (scene/resolve.cpp).
     constexpr int kUnit = 7;
     unsigned int tex = 0;
+    // A table freed since (brdf::merl::load keeps only the recent ones) takes its texture with it: 17.5 MB each.
+    m_measuredTextures.erase(std::remove_if(m_measuredTextures.begin(), m_measuredTextures.end(),
+                                            [](const auto& t) {
+                                                if (!t.first.expired()) return false;
+                                                glDeleteTextures(1, &t.second);
+                                                return true;
+                                            }),
+                             m_measuredTextures.end());
     for (const auto& t : m_measuredTextures)
-        if (t.first == table) tex = t.second;
+        if (t.first.lock() == table) tex = t.second;
     glActiveTexture(GL_TEXTURE0 + kUnit);
     if (!tex) {
         // f = entry x scale per channel, texels in the file's order (phi_d fastest, then theta_d, theta_h);

@@ -86,7 +86,8 @@ private:
     std::unique_ptr<class BumpTextures> m_bumpTextures;  ///< the bump fields' textures
     /// Measured tables uploaded as 3D textures (shaders/brdf_gl.glsl, block Measured), one per table read; the
     /// shared_ptr keeps the table's address from being reused by another while its texture lives.
-    std::vector<std::pair<std::shared_ptr<const brdf::merl::MeasuredBrdf>, unsigned int>> m_measuredTextures;
+    /// Measured tables' textures by table, weakly: a table nobody holds any more has its texture deleted.
+    std::vector<std::pair<std::weak_ptr<const brdf::merl::MeasuredBrdf>, unsigned int>> m_measuredTextures;
     void bindMeasured(const gl::Program& prog, const std::shared_ptr<const brdf::merl::MeasuredBrdf>& table);
     double m_shaderTimeLimit = 0;
     Watchdog m_watchdog;

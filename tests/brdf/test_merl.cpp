@@ -382,6 +382,35 @@ TEST_CASE("merl: load reads a file once while it is unchanged, and brdf::evaluat
     std::filesystem::remove(path);
 }
 
+TEST_CASE("merl: tables are held once and released: load keeps the 2 most recent, halves only the current one's") {
+    std::vector<std::string> paths;
+    for (int i = 0; i < 4; ++i) {
+        paths.push_back((std::filesystem::temp_directory_path() /
+                         ("hilite-merl-lru-" + std::to_string(getpid()) + "-" + std::to_string(i) + ".binary"))
+                            .string());
+        merl::MeasuredBrdf constant;
+        constant.raw.assign(3 * merl::kEntries, 100.0 * (i + 1));
+        std::ofstream(paths.back(), std::ios::binary) << merl::encode(constant);
+    }
+    std::weak_ptr<const merl::MeasuredBrdf> first, firstHalf;
+    {
+        const auto a = merl::load(paths[0], "--measured");
+        first = a;
+        firstHalf = merl::halfResolution(a, 0, 0);
+        CHECK(merl::halfResolution(a, 0, 0) == firstHalf.lock());  // asked again for the same table: the same half
+    }
+    const auto b = merl::load(paths[1], "--measured");
+    CHECK(!first.expired());  // one of the 2 most recent: a sweep coming back to it does not read it again
+    CHECK(merl::load(paths[0], "--measured") == first.lock());
+    CHECK(!merl::halfResolution(b, 0, 0)->raw.empty());
+    CHECK(firstHalf.expired());  // another table's halves asked for: the first's are freed
+    merl::load(paths[2], "--measured");
+    merl::load(paths[3], "--measured");
+    CHECK(first.expired());                                           // read 3 tables since and held by nobody: freed
+    CHECK(merl::load(paths[0], "--measured")->raw.front() == 100.0);  // and read again when asked for
+    for (const auto& p : paths) std::filesystem::remove(p);
+}
+
 TEST_CASE("merl: the albedo of a table: pi f for a constant one, the analytic GGX's within its resolution") {
     // A constant f = c above the horizon reflects pi c at every incidence (the Lambertian closed form).
     merl::MeasuredBrdf constant;
