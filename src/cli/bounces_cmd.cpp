@@ -4,6 +4,7 @@
 // (the columns of an experiment's [bounces] rows).
 
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "cli/scene_flags.hpp"
 #include "hilite/core/error.hpp"
 #include "hilite/experiments/bounces.hpp"
@@ -80,7 +81,11 @@ int runBounces(BounceFlags& f) {
     if (!f.json)
         std::cout << "# " << r.scene.brdf << "\n# " << f.settings << ", field seed " << values.text("bump_seed")
                   << "\n";
-    for (const auto& s : experiments::studyBounces(values, f.settings)) {
+    ProgressLine line;
+    const auto told = [&line](const std::string& stage, long done, long total) {
+        line(stage, size_t(done), size_t(total));
+    };
+    for (const auto& s : experiments::studyBounces(values, f.settings, told)) {
         if (f.json) {
             std::cout << experiments::bounceRow(s).dump() << "\n" << std::flush;
         } else {

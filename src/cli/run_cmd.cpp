@@ -4,11 +4,9 @@
 // joins them into what a single run writes.
 
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "hilite/experiments/run.hpp"
 
-#include <unistd.h>
-
-#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -22,20 +20,11 @@ struct RunFlags {
     std::string backend;
 };
 
-void progress(size_t done, size_t total, double seconds) {
-    static const bool tty = isatty(fileno(stderr));
-    if (!tty) return;
-    const double eta = done ? seconds / double(done) * double(total - done) : 0;
-    std::fprintf(stderr, "\r[%zu/%zu] %5.1f%%  elapsed %.1fs  ETA %.1fs   ", done, total,
-                 total ? 100.0 * double(done) / double(total) : 100.0, seconds, eta);
-    if (done == total) std::fprintf(stderr, "\n");
-}
-
 int runExperiment(const RunFlags& f) {
     experiments::RunOptions o;
     experiments::parseShard(f.shard, o.shardK, o.shardN);
     o.experiment = f.experiment, o.out = f.out, o.resume = f.resume, o.backend = f.backend, o.check = f.check;
-    o.progress = progress;
+    o.progress = [](size_t done, size_t total, double seconds) { ProgressLine::show("", done, total, seconds); };
     const experiments::RunSummary s = experiments::runExperiment(o);
     if (f.check) {
         std::cout << s.name << ": " << s.configurations << " configurations, every one valid (checked only: nothing "

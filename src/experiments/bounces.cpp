@@ -91,7 +91,8 @@ double luminance(const dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.
 
 }  // namespace
 
-std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceSettings& s) {
+std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceSettings& s,
+                                      const micro::BounceProgress& progress) {
     checkBounceSettings(s, false);  // the library's entry point checks as the CLI does (texels 1000 crashed the tile)
     const scene::Resolved r = resolveBounceScene(values);
     scene::Values kcValues = values;
@@ -107,7 +108,10 @@ std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceS
     spec.seed = uint64_t(std::llround(std::stod(values.text("bump_seed"))));
     spec.texels = s.texels;
     spec.bumpsPerTile = s.bumpsPerTile;
+    const std::string fieldStage = "field " + std::to_string(spec.texels) + "^2";
+    if (progress) progress(fieldStage, 0, 1);
     const micro::BumpField& field = micro::cachedBumpField(spec);
+    if (progress) progress(fieldStage, 1, 1);
     std::vector<BounceStudy> out;
     for (double theta : r.angles) {
         const auto t0 = std::chrono::steady_clock::now();
@@ -118,8 +122,13 @@ std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceS
         st.surface = s.options.surface;
         st.pathSeed = s.options.seed;
         st.hermiteRatio = s.options.surface == micro::TracedSurface::Hermite ? micro::hermiteSlopeRatio(field) : 1.0;
-        st.traced = micro::traceBounces(field, theta, channels, s.options);
-        st.walk = micro::walkSmithBounces(spec.roughness, theta, channels, s.options);
+        std::ostringstream at;
+        at << "theta " << theta << ": ";
+        const auto told = [&](const std::string& stage, long done, long total) {
+            if (progress) progress(at.str() + stage, done, total);
+        };
+        st.traced = micro::traceBounces(field, theta, channels, s.options, told);
+        st.walk = micro::walkSmithBounces(spec.roughness, theta, channels, s.options, told);
         st.smithSingle = brdf::albedo(white, theta).x;
         st.singleAlbedo = brdf::albedo(r.scene.brdf, theta);
         st.kcAlbedo = brdf::albedo(kc, theta);

@@ -1,5 +1,6 @@
 #include "hilite/micro/bounces.hpp"
 
+#include "hilite/core/error.hpp"
 #include "micro/masking.hpp"
 
 #include <algorithm>
@@ -272,9 +273,14 @@ uint64_t batchSeed(uint64_t seed, int batch) {
 
 /// Runs path(engine, tally) for every path of every batch, the batches spread over the cores.
 template <class Path>
-std::vector<BatchTally> runBatches(const BounceOptions& o, size_t channels, Path path) {
+std::vector<BatchTally> runBatches(const BounceOptions& o, size_t channels, Path path, const BounceProgress& progress,
+                                   const std::string& stage) {
     if (o.paths < 1 || o.batches < 2 || o.paths < o.batches)
-        throw std::invalid_argument("bounces: need paths >= batches >= 2");
+        throw InputError("bounces: need paths >= batches >= 2 (paths " + std::to_string(o.paths) + ", batches " +
+                         std::to_string(o.batches) + ")");
+    std::mutex told;
+    long done = 0;
+    if (progress) progress(stage, 0, o.batches);
     std::vector<BatchTally> tallies(size_t(o.batches), BatchTally(channels));
     const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), unsigned(o.batches)));
     auto work = [&](unsigned t) {
@@ -283,6 +289,9 @@ std::vector<BatchTally> runBatches(const BounceOptions& o, size_t channels, Path
             BatchTally& tally = tallies[size_t(b)];
             tally.paths = o.paths / o.batches + (b < o.paths % o.batches ? 1 : 0);
             for (long i = 0; i < tally.paths; ++i) path(e, tally);
+            if (!progress) continue;
+            const std::lock_guard<std::mutex> lock(told);
+            progress(stage, ++done, o.batches);
         }
     };
     std::vector<std::thread> pool;
@@ -376,9 +385,9 @@ double hermiteSlopeRatio(const BumpField& f) {
 }
 
 BounceTally traceBounces(const BumpField& f, double thetaDeg, const brdf::ReflectanceChannels& ch,
-                         const BounceOptions& o) {
+                         const BounceOptions& o, const BounceProgress& progress) {
     if (f.spec.kind != BumpKind::Beckmann)
-        throw std::invalid_argument("bounces are traced on Beckmann height fields only (a GGX field is a normal map)");
+        throw InputError("bounces are traced on Beckmann height fields only (a GGX field is a normal map)");
     Surface flat;  // TracedSurface::Bilinear
     flat.n = f.n, flat.bilinear = &f, flat.top = f.heightMax;
     const std::shared_ptr<const Surface> hermite = o.surface == TracedSurface::Hermite ? cachedSurface(f) : nullptr;
@@ -386,55 +395,62 @@ BounceTally traceBounces(const BumpField& f, double thetaDeg, const brdf::Reflec
     const dvec3 wi = sphericalDirectionDeg(thetaDeg, 0.0);
     const double step = o.stepTexels / s.n;
     const size_t nc = ch.size();
-    const auto batches = runBatches(o, nc, [&](Engine& e, BatchTally& tally) {
-        std::vector<double> w(nc, 1.0), F(nc);
-        // Uniform over the plane above the surface: the hits are weighted by projected area, as light falls.
-        dvec3 p(e.uniform(), e.uniform(), s.top), d = -wi;
-        size_t firstBin = 0;
-        for (int order = 0;; ++order) {
-            dvec3 at;
-            const Hit hit = intersect(s, p, d, step, at);
-            if (hit == Hit::Leaves) return tally.leave(order, w, firstBin);
-            if (hit == Hit::Lost || order == kMaxBounces) return void(++tally.stuck);
-            dvec2 g;
-            s.height(at.x, at.y, &g);
-            const dvec3 m = glm::normalize(dvec3(-g.x, -g.y, 1.0));
-            const double cosD = -glm::dot(d, m);
-            // A facet facing away from the ray: the march stepped over a ridge's far side (never seen so far).
-            if (cosD <= 0.0) {
-                ++tally.stuck, ++tally.backHits;
-                return;
+    const auto batches = runBatches(
+        o, nc,
+        [&](Engine& e, BatchTally& tally) {
+            std::vector<double> w(nc, 1.0), F(nc);
+            // Uniform over the plane above the surface: the hits are weighted by projected area, as light falls.
+            dvec3 p(e.uniform(), e.uniform(), s.top), d = -wi;
+            size_t firstBin = 0;
+            for (int order = 0;; ++order) {
+                dvec3 at;
+                const Hit hit = intersect(s, p, d, step, at);
+                if (hit == Hit::Leaves) return tally.leave(order, w, firstBin);
+                if (hit == Hit::Lost || order == kMaxBounces) return void(++tally.stuck);
+                dvec2 g;
+                s.height(at.x, at.y, &g);
+                const dvec3 m = glm::normalize(dvec3(-g.x, -g.y, 1.0));
+                const double cosD = -glm::dot(d, m);
+                // A facet facing away from the ray: the march stepped over a ridge's far side (never seen so far).
+                if (cosD <= 0.0) {
+                    ++tally.stuck, ++tally.backHits;
+                    return;
+                }
+                ch.fresnel(cosD, F.data());
+                for (size_t c = 0; c < nc; ++c) w[c] *= F[c];
+                p = at, d = d + 2.0 * cosD * m;
+                if (order == 0) tally.firstReflection(firstBin = exitBin(d.z));
             }
-            ch.fresnel(cosD, F.data());
-            for (size_t c = 0; c < nc; ++c) w[c] *= F[c];
-            p = at, d = d + 2.0 * cosD * m;
-            if (order == 0) tally.firstReflection(firstBin = exitBin(d.z));
-        }
-    });
+        },
+        progress, "traced");
     return summarize(thetaDeg, batches, ch);
 }
 
-BounceTally walkSmithBounces(double m, double thetaDeg, const brdf::ReflectanceChannels& ch, const BounceOptions& o) {
+BounceTally walkSmithBounces(double m, double thetaDeg, const brdf::ReflectanceChannels& ch, const BounceOptions& o,
+                             const BounceProgress& progress) {
     const dvec3 wi = sphericalDirectionDeg(thetaDeg, 0.0);
     const size_t nc = ch.size();
-    const auto batches = runBatches(o, nc, [&](Engine& e, BatchTally& tally) {
-        std::vector<double> w(nc, 1.0), F(nc);
-        dvec3 wr = -wi;   // the ray's direction, going down at first
-        double hr = 2.0;  // above the surface: C1 = 1
-        size_t firstBin = 0;
-        for (int order = 0;; ++order) {
-            hr = sampleHeight(wr, hr, m, e.uniform());
-            if (std::isinf(hr)) return tally.leave(order, w, firstBin);
-            if (order == kMaxBounces) return void(++tally.stuck);
-            const double u1 = e.uniform(), u2 = e.uniform(), u3 = e.uniform();
-            const dvec3 wm = sampleVisibleNormal(-wr, m, u1, u2, u3);
-            const double cosD = glm::dot(-wr, wm);
-            ch.fresnel(cosD, F.data());
-            for (size_t c = 0; c < nc; ++c) w[c] *= F[c];
-            wr = wr + 2.0 * cosD * wm;
-            if (order == 0) tally.firstReflection(firstBin = exitBin(wr.z));
-        }
-    });
+    const auto batches = runBatches(
+        o, nc,
+        [&](Engine& e, BatchTally& tally) {
+            std::vector<double> w(nc, 1.0), F(nc);
+            dvec3 wr = -wi;   // the ray's direction, going down at first
+            double hr = 2.0;  // above the surface: C1 = 1
+            size_t firstBin = 0;
+            for (int order = 0;; ++order) {
+                hr = sampleHeight(wr, hr, m, e.uniform());
+                if (std::isinf(hr)) return tally.leave(order, w, firstBin);
+                if (order == kMaxBounces) return void(++tally.stuck);
+                const double u1 = e.uniform(), u2 = e.uniform(), u3 = e.uniform();
+                const dvec3 wm = sampleVisibleNormal(-wr, m, u1, u2, u3);
+                const double cosD = glm::dot(-wr, wm);
+                ch.fresnel(cosD, F.data());
+                for (size_t c = 0; c < nc; ++c) w[c] *= F[c];
+                wr = wr + 2.0 * cosD * wm;
+                if (order == 0) tally.firstReflection(firstBin = exitBin(wr.z));
+            }
+        },
+        progress, "Smith walk");
     return summarize(thetaDeg, batches, ch);
 }
 

@@ -152,22 +152,38 @@ TEST_CASE("cli::run a real SIGKILL part-way, then --resume, gives the uninterrup
     CHECK(comparable(readCsv(d / "cut/results.csv")) == comparable(readCsv(d / "full/results.csv")));
 }
 
-TEST_CASE("cli::run shows a progress line on a terminal only") {
-    Dir d;
-    // `script` gives the run a pseudo-terminal; popen gives it a pipe.
-    const std::string cmd = std::string(HILITE_EXE) + " run " + (d / "small.toml") + " -o " + (d / "tty");
-    FILE* p = popen(("script -qec '" + cmd + "' /dev/null 2>&1").c_str(), "r");
+namespace {
+/// What `cmd` prints (stdout and stderr) on a pseudo-terminal (`script`), or into a pipe.
+std::string printed(const std::string& cmd, bool terminal) {
+    FILE* p = popen((terminal ? "script -qec '" + cmd + "' /dev/null 2>&1" : cmd + " 2>&1").c_str(), "r");
     std::string out;
     char buf[4096];
     while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
     pclose(p);
+    return out;
+}
+}  // namespace
+
+TEST_CASE("cli::run shows a progress line on a terminal only") {
+    Dir d;
+    const std::string cmd = std::string(HILITE_EXE) + " run " + (d / "small.toml") + " -o " + (d / "tty");
+    const std::string out = printed(cmd, true);
     CHECK(out.find("ETA") != std::string::npos);
     CHECK(out.find("[8/8]") != std::string::npos);
-    FILE* q = popen((cmd + " 2>&1").c_str(), "r");
-    std::string piped;
-    while (size_t n = fread(buf, 1, sizeof buf, q)) piped.append(buf, n);
-    pclose(q);
+    CHECK(printed(cmd, false).find("ETA") == std::string::npos);
+}
+
+TEST_CASE("cli::brdf bounces shows its progress on a terminal only: the field, then each incidence's batches") {
+    const std::string cmd = std::string(HILITE_EXE) +
+                            " brdf bounces --incidence 30 --paths 2000 --batches 4 --texels 128 --bumps-per-tile 8";
+    const std::string out = printed(cmd, true);
+    CHECK(out.find("field 128^2 [1/1]") != std::string::npos);
+    CHECK(out.find("theta 30: traced [4/4]") != std::string::npos);
+    CHECK(out.find("theta 30: Smith walk [4/4]") != std::string::npos);
+    CHECK(out.find("theta_i = 30 deg") != std::string::npos);
+    const std::string piped = printed(cmd, false);
     CHECK(piped.find("ETA") == std::string::npos);
+    CHECK(piped.find("theta_i = 30 deg") != std::string::npos);
 }
 
 TEST_CASE("cli::merge shards equal a single run, row for row") {

@@ -201,3 +201,19 @@ TEST_CASE("studyBounces checks its settings as the CLI does: InputError, not a c
         CHECK(r.find('\n') == std::string::npos);
     }
 }
+
+TEST_CASE("studyBounces tells its progress: the field, then each incidence's batches, traced and walked") {
+    experiments::BounceSettings s;
+    s.texels = 128, s.bumpsPerTile = 8, s.options.paths = 800, s.options.batches = 4;
+    std::vector<std::string> told;
+    experiments::studyBounces(bounceValues("--roughness 0.6 --incidence 0,60"), s,
+                              [&](const std::string& stage, long done, long total) {
+                                  told.push_back(stage + " " + std::to_string(done) + "/" + std::to_string(total));
+                              });
+    std::vector<std::string> expected = {"field 128^2 0/1", "field 128^2 1/1"};
+    for (const char* theta : {"0", "60"})
+        for (const char* stage : {"traced", "Smith walk"})
+            for (int k = 0; k <= 4; ++k)
+                expected.push_back(std::string("theta ") + theta + ": " + stage + " " + std::to_string(k) + "/4");
+    CHECK(told == expected);
+}

@@ -5,6 +5,7 @@
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
 #include "hilite/brdf/colour.hpp"
+#include "hilite/core/error.hpp"
 #include "hilite/micro/bounces.hpp"
 
 #include <doctest/doctest.h>
@@ -88,7 +89,16 @@ TEST_CASE("micro::traceBounces") {
         s.kind = micro::BumpKind::GGX;
         s.texels = 64;
         s.bumpsPerTile = 8;
-        CHECK_THROWS_AS(micro::traceBounces(micro::makeBumpField(s), 0.0, white, options(100)), std::invalid_argument);
+        CHECK_THROWS_AS(micro::traceBounces(micro::makeBumpField(s), 0.0, white, options(100)), InputError);
+    }
+    SUBCASE("fewer paths than batches, or one batch: InputError, as every public entry point") {
+        const auto f = smallField(0.6);
+        micro::BounceOptions o = options(100);
+        o.batches = 1;
+        CHECK_THROWS_AS(micro::traceBounces(f, 0.0, white, o), InputError);
+        CHECK_THROWS_AS(micro::walkSmithBounces(0.3, 0.0, white, o), InputError);
+        o.batches = 16, o.paths = 8;
+        CHECK_THROWS_AS(micro::walkSmithBounces(0.3, 0.0, white, o), InputError);
     }
 }
 

@@ -50,8 +50,10 @@ struct BounceStudy {
 /// trace (m >= 0.05), no geometry but smith, no diffuse, no multiscatter, one incidence below 90 degrees.
 /// Returns it resolved with --geometry smith.
 scene::Resolved resolveBounceScene(scene::Values values);
-/// The study of the scene at each of its incidences.
-std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceSettings& s);
+/// The study of the scene at each of its incidences; `progress` is told of the field's making ("field 1024^2")
+/// and of each incidence's batches ("theta 60: traced", "theta 60: Smith walk").
+std::vector<BounceStudy> studyBounces(const scene::Values& values, const BounceSettings& s,
+                                      const micro::BounceProgress& progress = {});
 
 /// The columns a study adds to a row, and the row's values for them.
 std::vector<std::string> bounceColumns();

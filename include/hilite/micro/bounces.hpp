@@ -18,6 +18,7 @@
 #include "hilite/micro/bump_field.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -76,12 +77,16 @@ struct BounceTally {
     std::vector<double> firstExitShare, firstExitEscape;
 };
 
-/// Rays on the height field of `f` (Beckmann fields only: std::invalid_argument otherwise).
+/// Told as work finishes, one call at a time: `done` of `total` parts of `stage` (batches of paths; 0 of 1,
+/// then 1 of 1, for a step in one piece). For a progress line (a 4096^2 study runs for minutes); may be empty.
+using BounceProgress = std::function<void(const std::string& stage, long done, long total)>;
+
+/// Rays on the height field of `f` (Beckmann fields only, paths >= batches >= 2: InputError otherwise).
 BounceTally traceBounces(const BumpField& f, double thetaDeg, const brdf::ReflectanceChannels& channels,
-                         const BounceOptions& o);
+                         const BounceOptions& o, const BounceProgress& progress = {});
 /// The random walk on Smith's Beckmann microsurface of rms slope m.
 BounceTally walkSmithBounces(double m, double thetaDeg, const brdf::ReflectanceChannels& channels,
-                             const BounceOptions& o);
+                             const BounceOptions& o, const BounceProgress& progress = {});
 
 /// The traced surface's realised rms slope before the rescale, over m (the Hermite surface against the
 /// bilinear one the field is normalized on; 1.01-1.02 at 16 texels a bump period).
