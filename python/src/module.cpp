@@ -8,6 +8,7 @@
 
 #include "brdf/bihemispherical.hpp"
 #include "brdf/integrate.hpp"
+#include "brdf/merl.hpp"
 #include "core/text.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/results.hpp"
@@ -47,27 +48,30 @@ void checkBackend(measurement::Session& s, const scene::Resolved& r) {
                          " (made by the first GL call of this process); a process holds one");
 }
 
-std::vector<scene::Resolved> resolveAll(const std::vector<Items>& scenes, scene::Purpose purpose) {
-    std::vector<scene::Resolved> out;
-    out.reserve(scenes.size());
-    for (const Items& items : scenes) out.push_back(scene::resolve(python::values(items), purpose));
-    return out;
-}
-
-/// Every scene is resolved (and so checked) before the first is measured.
+/// Every scene is resolved (and so checked) before the first is measured; a measured table is then let go and
+/// read again when its scene is measured, so a list of tables is held one at a time (merl::load keeps the 2 most
+/// recent), as `hilite run` holds a folder sweep's: 6 tables peaked at 875 MB, all held to the end.
 py::list measureScenes(const std::vector<Items>& scenes) {
     std::vector<nlohmann::json> rows;
     {
         py::gil_scoped_release release;
-        const std::vector<scene::Resolved> all = resolveAll(scenes, scene::Purpose::Measure);
+        std::vector<scene::Resolved> all;
+        std::vector<bool> table;
+        for (const Items& items : scenes) {
+            all.push_back(scene::resolve(python::values(items), scene::Purpose::Measure));
+            table.push_back(all.back().scene.brdf.measured != nullptr);
+            all.back().scene.brdf.measured.reset();
+        }
         worker().run([&](measurement::Session& s) {
-            for (const scene::Resolved& r : all) {
-                if (!r.reference && !r.setup.cpu) {
-                    checkBackend(s, r);
-                    s.rendererFor(r);  // a .brdf's probe, before its first row
+            for (size_t i = 0; i < all.size(); ++i) {
+                scene::Resolved one =
+                    table[i] ? scene::resolve(python::values(scenes[i]), scene::Purpose::Measure) : std::move(all[i]);
+                if (!one.reference && !one.setup.cpu) {
+                    checkBackend(s, one);
+                    s.rendererFor(one);  // a .brdf's probe, before its first row
                 }
-                scene::Resolved one = r;
-                for (double angle : r.angles) {
+                const std::vector<double> angles = one.angles;
+                for (double angle : angles) {
                     one.scene.light.incidenceDeg = angle;
                     nlohmann::json j = measurement::toJson(s.measureOne(one));
                     experiments::nameNonFinite(j);  // as `hilite measure --json` writes it
@@ -391,6 +395,10 @@ PYBIND11_MODULE(_hilite, m) {
         py::gil_scoped_release release;
         worker().run([&](measurement::Session& s) { name = s.glRenderer(); });
         return name;
+    });
+    m.def("_measured_tables_held", [] {  // (now, peak) since the last call: tests of a list of tables' memory
+        const brdf::merl::Held h = brdf::merl::tablesHeld(true);
+        return std::make_pair(h.now, h.peak);
     });
     m.def("worker_thread_id", [] { return worker().threadId(); });
     m.def("_shutdown", [] {

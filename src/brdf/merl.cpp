@@ -257,6 +257,18 @@ MeasuredBrdf read(const std::string& path, const std::string& what) {
     return parse(readInputFile(path, what, kMaxReadBytes), path, what);
 }
 
+namespace {
+std::mutex heldMutex;
+Held held;
+}  // namespace
+
+Held tablesHeld(bool resetPeak) {
+    const std::lock_guard<std::mutex> lock(heldMutex);
+    const Held now = held;
+    if (resetPeak) held.peak = held.now;
+    return now;
+}
+
 std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::string& what) {
     // Held once: a table anyone still holds is shared (weak entries), and the last kKeep read stay alive for a
     // sweep that comes back to them (each configuration resolves its scene again); the rest are freed, so memory
@@ -285,7 +297,16 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
             keep(held);
             return held;
         }
-    auto table = std::make_shared<const MeasuredBrdf>(read(path, what));  // throws before the cache changes
+    // Counted while alive (tablesHeld): a test of a sweep's memory sees how many tables it held at once.
+    const std::shared_ptr<const MeasuredBrdf> table(new MeasuredBrdf(read(path, what)), [](const MeasuredBrdf* t) {
+        delete t;
+        const std::lock_guard<std::mutex> count(heldMutex);
+        --held.now;
+    });  // read throws before the cache changes
+    {
+        const std::lock_guard<std::mutex> count(heldMutex);
+        held.peak = std::max(held.peak, ++held.now);
+    }
     for (auto it = cache.begin(); it != cache.end();) it = it->second.table.expired() ? cache.erase(it) : std::next(it);
     cache[path] = Entry{size, mtime, table};
     keep(table);

@@ -130,6 +130,13 @@ constexpr std::size_t kMaxReadBytes = std::size_t(64) << 20;
 /// 35 MB of doubles). Thread-safe.
 std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::string& what = "MERL file");
 
+/// Tables load() has read that are still alive, now and at most at once (since the last reset); resetPeak sets
+/// the peak to now. For tests of a sweep's memory: a folder of tables must be held a few at a time.
+struct Held {
+    std::size_t now = 0, peak = 0;
+};
+Held tablesHeld(bool resetPeak = false);
+
 /// \brief The table at half its resolution along one axis, for the interpolation's error estimate
 /// (measurement/row.cpp): every bin of the axis of the given parity (1: odd) replaced by the interpolation of
 /// its neighbours of the other parity (phi_d and theta_d: the mean of the
