@@ -25,6 +25,8 @@ const char* toString(Flag f) {
         case Flag::PartsNotMeasured: return "parts_not_measured";
         case Flag::NotConverged: return "not_converged";
         case Flag::LightUndersampled: return "light_undersampled";
+        case Flag::FloatOverflow: return "float_overflow";
+        case Flag::FloatUnderflow: return "float_underflow";
     }
     return "unknown";
 }
@@ -47,6 +49,26 @@ std::ostream& operator<<(std::ostream& os, const Shape& s) {
 }
 
 bool Shape::has(Flag f) const { return flags.has(f); }
+
+bool unmeasured(const Shape& s) { return s.has(Flag::FloatOverflow) || s.has(Flag::FloatUnderflow); }
+
+void setUnmeasured(Shape& s, Flag why) {
+    const bool over = s.has(Flag::FloatOverflow) || why == Flag::FloatOverflow;
+    const bool under = s.has(Flag::FloatUnderflow) || why == Flag::FloatUnderflow;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (double* v : {&s.peak, &s.peak_u_deg, &s.peak_v_deg, &s.aspect, &s.eccentricity, &s.major_deg, &s.minor_deg,
+                      &s.orientation_deg, &s.centroid_u_deg, &s.centroid_v_deg, &s.fwhm_u_deg, &s.fwhm_v_deg,
+                      &s.area_deg2, &s.minor_pixels})
+        *v = nan;
+    s.region_pixels = 0;
+    s.components = 0;
+    s.parts.clear();
+    s.moments = AreaMoments{};
+    // Only the float flags stay: the others (no_highlight, under_resolved, clipped) described numbers not measured.
+    s.flags = FlagSet{};
+    if (over) s.flags.insert(Flag::FloatOverflow);
+    if (under) s.flags.insert(Flag::FloatUnderflow);
+}
 
 void validate(const Options& opt) {
     // Checked where the numbers enter the library: a threshold of 0 or 1 makes the region everything

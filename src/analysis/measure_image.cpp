@@ -50,6 +50,7 @@ struct Pixels {
 /// Pass 1: over the pixels that see the surface (w > 0), the peak, the smallest L, and each run's largest L.
 struct Survey {
     float peak = 0.f, minVisible = std::numeric_limits<float>::infinity();
+    bool nonFinite = false;  ///< a visible pixel holds an inf or NaN L (float_overflow)
     int x = -1, y = -1;
     std::vector<float> runMax;  ///< height * runs(); -1 for a run of sky
 };
@@ -68,15 +69,20 @@ Survey survey(const Pixels& px) {
             // the analysis (a branch per pixel). Same values: max(L, 0) is 0 for a NaN L, as std::max(0, L).
             const __m128 zero = _mm_setzero_ps(), minus1 = _mm_set1_ps(-1.f);
             const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-            __m128 mv = minus1, lov = inf;
+            const __m128 floatMax = _mm_set1_ps(std::numeric_limits<float>::max());
+            const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+            __m128 mv = minus1, lov = inf, bad = zero;
             for (; x + 4 <= end; x += 4) {
                 const float* q = px.at(x, y);
                 const __m128 p0 = _mm_loadu_ps(q), p1 = _mm_loadu_ps(q + 4), p2 = _mm_loadu_ps(q + 8),
                              p3 = _mm_loadu_ps(q + 12);
                 const __m128 t0 = _mm_unpacklo_ps(p0, p1), t1 = _mm_unpacklo_ps(p2, p3);  // L0 L1 u0 u1, L2 L3 u2 u3
                 const __m128 t2 = _mm_unpackhi_ps(p0, p1), t3 = _mm_unpackhi_ps(p2, p3);  // v0 v1 w0 w1, v2 v3 w2 w3
-                const __m128 L = _mm_max_ps(_mm_movelh_ps(t0, t1), zero), w = _mm_movehl_ps(t3, t2);
+                const __m128 raw = _mm_movelh_ps(t0, t1);
+                const __m128 L = _mm_max_ps(raw, zero), w = _mm_movehl_ps(t3, t2);
                 const __m128 visible = _mm_cmpgt_ps(w, zero);
+                // not |L| <= FLT_MAX: inf or NaN (the unordered compare is true for NaN)
+                bad = _mm_or_ps(bad, _mm_and_ps(visible, _mm_cmpnle_ps(_mm_and_ps(raw, absMask), floatMax)));
                 const __m128 dense = _mm_or_ps(_mm_and_ps(visible, L), _mm_andnot_ps(visible, minus1));
                 _mm_storeu_ps(px.dense + px.index(x, y), dense);
                 mv = _mm_max_ps(mv, dense);
@@ -86,11 +92,13 @@ Survey survey(const Pixels& px) {
             _mm_store_ps(mm, mv);
             _mm_store_ps(ll, lov);
             for (int k = 0; k < 4; ++k) m = std::max(m, mm[k]), lo = std::min(lo, ll[k]);
+            if (_mm_movemask_ps(bad)) s.nonFinite = true;
 #endif
             for (; x < end; ++x) {
                 const float* q = px.at(x, y);
                 const bool visible = q[3] > 0.f;
                 const float L = visible ? std::max(0.f, q[0]) : -1.f;  // (a negative or NaN L counts as 0)
+                if (visible && !std::isfinite(q[0])) s.nonFinite = true;
                 px.dense[px.index(x, y)] = L;
                 m = std::max(m, L);
                 lo = std::min(lo, visible ? L : lo);
@@ -450,6 +458,17 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     const Pixels px{pixels, width, height, dense.get()};
     Shape s;
     Survey sv = survey(px);
+    // Pixels past float's range describe no lobe (NaN counts as 0 below, inf swallows the threshold): name it.
+    if (sv.nonFinite) {
+        setUnmeasured(s, Flag::FloatOverflow);
+        return s;
+    }
+    // A level among the denormals (or below them: 0) compares pixels that have lost the lobe's digits.
+    if (sv.peak > 0.f &&
+        (opt.level > 0 ? opt.level : opt.threshold * double(sv.peak)) < double(std::numeric_limits<float>::min())) {
+        setUnmeasured(s, Flag::FloatUnderflow);
+        return s;
+    }
     if (!(sv.peak > 0.f) ||
         (opt.level > 0 && double(sv.peak) < opt.level)) {  // all dark, nothing visible or above the level
         s.flags.insert(Flag::NoHighlight);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace hilite::analysis {
@@ -29,8 +30,9 @@ void Supersampler::add(const float* pixels) {
     const size_t n = m_sums.size(), s = size_t(m_added), k = size_t(m_samples);
     for (size_t p = 0; p < n; ++p) {
         const float* q = pixels + 4 * p;
-        if (!(q[3] > 0.f)) continue;          // sees no surface: stays -1, adds nothing to the position
-        const float L = std::max(0.f, q[0]);  // (a negative or NaN L counts as 0, as in measureImage)
+        if (!(q[3] > 0.f)) continue;                   // sees no surface: stays -1, adds nothing to the position
+        const float L = std::max(0.f, q[0]);           // (a negative or NaN L counts as 0, as in measureImage)
+        if (!std::isfinite(q[0])) m_nonFinite = true;  // float_overflow, as in measureImage
         m_L[p * k + s] = L;
         PixelSums& ps = m_sums[p];
         ps.u += q[1], ps.v += q[2], ps.w += q[3], ++ps.visible;
@@ -80,11 +82,19 @@ Shape Supersampler::measure(const Options& opt) const {
         throw InputError("Supersampler: " + std::to_string(m_added) + " of " + std::to_string(m_samples) +
                          " renders added");
     Shape s;
+    if (m_nonFinite) {  // as measureImage: pixels past float's range
+        setUnmeasured(s, Flag::FloatOverflow);
+        return s;
+    }
     if (!(m_peak > 0.f)) {
         s.flags.insert(Flag::NoHighlight);
         return s;
     }
     const double T = opt.level > 0 ? opt.level : opt.threshold * double(m_peak);
+    if (T < double(std::numeric_limits<float>::min())) {  // as measureImage: a level among the denormals
+        setUnmeasured(s, Flag::FloatUnderflow);
+        return s;
+    }
     if (!(double(m_peak) >= T)) {
         s.flags.insert(Flag::NoHighlight);
         return s;

@@ -42,6 +42,7 @@ private:
     std::vector<float> m_L;  ///< pixel-major: sample s of pixel p at p * samples + s; -1 = sees no surface
     std::vector<PixelSums> m_sums;
     float m_peak = 0.f;
+    bool m_nonFinite = false;  ///< a visible pixel of some render held inf or NaN
     size_t m_peakPixel = 0;
 };
 

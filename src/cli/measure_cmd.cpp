@@ -71,9 +71,9 @@ void printTableRow(const nlohmann::json& j) {
             return j["error_estimate"][k].is_null() ? NAN : j["error_estimate"][k].get<double>();
         };
         std::printf(
-            "  error estimate (resolution convergence, no CPU twin for .brdf): aspect %.1e, major %.1e, "
-            "minor %.1e deg\n",
-            err("aspect"), err("major_deg"), err("minor_deg"));
+            "  error estimate (resolution convergence, no CPU twin for .brdf): aspect %s, major %s, minor %s deg\n",
+            cell(err("aspect"), "%*.1e", 0).c_str(), cell(err("major_deg"), "%*.1e", 0).c_str(),
+            cell(err("minor_deg"), "%*.1e", 0).c_str());
     }
     if (j.contains("framing_note")) std::printf("  note: %s\n", j["framing_note"].get<std::string>().c_str());
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hilite::measurement {
 
@@ -86,10 +87,21 @@ void diagnose(const render::Scene& scene, double threshold, Path path, analysis:
         if (lightReaches(scene) && F > 0) replace(shape, Flag::NoHighlight, Flag::Mirror);
         return;
     }
+    const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
+    // The double twin's peak says when the path's numbers cannot hold the lobe: pixels are float32, the
+    // reference double (a table x 1e300 is inf in float; a 1e-320 table is 0 in float, denormal in double).
+    const bool pixels = path != Path::Reference;
+    const double most = pixels ? double(std::numeric_limits<float>::max()) : std::numeric_limits<double>::max();
+    const double least = pixels ? double(std::numeric_limits<float>::min()) : std::numeric_limits<double>::min();
+    if (w.peak > most) shape.flags.insert(Flag::FloatOverflow);
+    else if (w.peak > 0 && threshold * w.peak < least) shape.flags.insert(Flag::FloatUnderflow);
+    if (analysis::unmeasured(shape)) {
+        analysis::setUnmeasured(shape, shape.has(Flag::FloatOverflow) ? Flag::FloatOverflow : Flag::FloatUnderflow);
+        return;
+    }
     if (path != Path::Reference && scene.light.area() && render::lightRule(scene).error > kLightRuleFlag)
         shape.flags.insert(Flag::LightUndersampled);
     if (unboundedAtHorizon(scene, shape)) shape.flags.insert(Flag::UnboundedAtHorizon);
-    const LobeWidths w = widths ? *widths : twinLobeWidths(scene, threshold);
     if (!(w.peak > 0)) return;
     // The lobe exists, yet no pixel centre of a fixed frame sees it: the frame is too coarse for it.
     if (path != Path::Reference && shape.has(Flag::NoHighlight)) replace(shape, Flag::NoHighlight, Flag::UnderResolved);

@@ -400,6 +400,9 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     diagnose(scene, setup.options.threshold, path, m.shape, &widths);  // mirror, sub-pixel lobes, float limits
     if (survey && !survey->unbounded && survey->parts.size() > 1) flagPartsOutside(scene, *survey, cam, m.shape);
     flagUnbounded(survey, m.shape);
+    if (analysis::unmeasured(m.shape))  // the flags above describe numbers that are not there
+        analysis::setUnmeasured(m.shape, m.shape.has(analysis::Flag::FloatOverflow) ? analysis::Flag::FloatOverflow
+                                                                                    : analysis::Flag::FloatUnderflow);
     if (m.shape.has(analysis::Flag::NoHighlight)) m.shape.components = 0;
     m.fovDeg = frame.fovDeg;
     m.center = frame.center;

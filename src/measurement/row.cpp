@@ -237,7 +237,8 @@ Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
     const MeasureSetup& setup = r.setup;
     if (r.reference) {
         Result res = resultOf(r, measureReference(scene, setup.options), setup.width, setup.height, "reference");
-        if (scene.brdf.measured) res.tableError = tableError(renderer, r, setup, res.measurement.shape);
+        if (scene.brdf.measured && !analysis::unmeasured(res.measurement.shape))
+            res.tableError = tableError(renderer, r, setup, res.measurement.shape);
         return res;
     }
     const std::string method = setup.cpu ? "cpu" : "gl";
@@ -250,12 +251,14 @@ Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
         res.tolerance =
             ToleranceFields{tr.errorEstimate,      tr.predictedError, tr.met,      tr.setup,     tr.checkSetup,
                             tr.check.shape.aspect, tr.rounds,         tr.total_ms, tr.startup_ms};
-        if (scene.brdf.measured) res.tableError = tableError(renderer, r, tr.setup, res.measurement.shape);
+        if (scene.brdf.measured && !analysis::unmeasured(res.measurement.shape))
+            res.tableError = tableError(renderer, r, tr.setup, res.measurement.shape);
         return res;
     }
     Result res = resultOf(r, measure(renderer, scene, setup), setup.width, setup.height, method);
     if (renderer) res.prefilter = prefilterFields(*renderer, scene, setup, res.measurement);  // --prefilter-check
-    if (scene.brdf.measured) res.tableError = tableError(renderer, r, setup, res.measurement.shape);
+    if (scene.brdf.measured && !analysis::unmeasured(res.measurement.shape))
+        res.tableError = tableError(renderer, r, setup, res.measurement.shape);
     return res;
 }
 

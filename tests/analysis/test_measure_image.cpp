@@ -15,6 +15,7 @@
 #include <cmath>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -355,6 +356,33 @@ TEST_CASE("analysis::measureImage flags") {
         CHECK_NEAR(s.aspect, ref.aspect, 0.005);
         CHECK(s.major_deg == doctest::Approx(ref.major_deg).epsilon(0.01));
         CHECK(s.minor_deg == doctest::Approx(ref.minor_deg).epsilon(0.02));
+    }
+    SUBCASE("float_overflow: an inf or NaN pixel leaves the numbers unmeasured, not 0 or 1") {
+        // A bright spot of 5 x 5 pixels with one pixel past float's range (before: aspect 1, major 0, no flag).
+        for (const float bad : {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+            CAPTURE(bad);
+            const Shape s = analyse(gridImage(16, 16, [bad](int x, int y) {
+                if (x == 8 && y == 8) return bad;
+                return std::abs(x - 8) <= 2 && std::abs(y - 8) <= 2 ? 1.f : 0.f;
+            }));
+            CHECK(s.flags == FlagSet{Flag::FloatOverflow});
+            CHECK(std::isnan(s.aspect));
+            CHECK(std::isnan(s.major_deg));
+            CHECK(std::isnan(s.peak));
+            CHECK(s.components == 0);
+        }
+    }
+    SUBCASE("float_underflow: a level below the smallest normal float") {
+        // The same spot at 1e-39 (a float denormal): its level 5e-40 compares digits float no longer holds.
+        const Shape s = analyse(gridImage(
+            16, 16, [](int x, int y) { return std::abs(x - 8) <= 2 && std::abs(y - 8) <= 2 ? 1e-39f : 0.f; }));
+        CHECK(s.flags == FlagSet{Flag::FloatUnderflow});
+        CHECK(std::isnan(s.aspect));
+        // At 1e-30 (normal) the spot measures: the check is the level's, not the values' size.
+        const Shape normal = analyse(gridImage(
+            16, 16, [](int x, int y) { return std::abs(x - 8) <= 2 && std::abs(y - 8) <= 2 ? 1e-30f : 0.f; }));
+        CHECK_FALSE(unmeasured(normal));
+        CHECK(normal.aspect == doctest::Approx(1.0));
     }
     SUBCASE("bad input") {
         const ImageF img = gridImage(4, 4, [](int, int) { return 1.f; });

@@ -12,6 +12,7 @@
 #include "support/near.hpp"
 
 #include <cmath>
+#include <limits>
 
 using namespace hilite;
 
@@ -79,6 +80,25 @@ TEST_CASE("analysis::Supersampler") {
         CHECK(cut.has(analysis::Flag::HorizonCut));
         const analysis::Shape clipped = supersampled(chart, lobe, 5, 32, 2);
         CHECK(clipped.has(analysis::Flag::Clipped));
+    }
+    SUBCASE("float_overflow and float_underflow, as measureImage") {
+        ImageF img(4, 4, 4);
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 4; ++x) {
+                float* p = img.pixel(x, y);
+                p[0] = x == 1 && y == 1 ? 1.f : 0.5f, p[1] = float(x), p[2] = float(y), p[3] = 1.f;
+            }
+        ImageF over = img, under = img;
+        over.pixel(2, 2)[0] = std::numeric_limits<float>::infinity();
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 4; ++x) under.pixel(x, y)[0] *= 1e-39f;  // the level: a float denormal
+        analysis::Supersampler a(4, 4, 2), b(4, 4, 2);
+        for (int k = 0; k < 2; ++k) a.add(k ? over.data.data() : img.data.data()), b.add(under.data.data());
+        const analysis::Shape sa = a.measure({}), sb = b.measure({});
+        CHECK(sa.flags == analysis::FlagSet{analysis::Flag::FloatOverflow});
+        CHECK(std::isnan(sa.aspect));
+        CHECK(sb.flags == analysis::FlagSet{analysis::Flag::FloatUnderflow});
+        CHECK(std::isnan(sb.major_deg));
     }
     SUBCASE("misuse") {
         CHECK_THROWS_AS(analysis::Supersampler(0, 4, 1), InputError);

@@ -133,6 +133,7 @@ SceneOutcome runSceneDouble(const SceneCase& c) {
 }
 
 bool shapeFinite(const analysis::Shape& s) {
+    if (analysis::unmeasured(s)) return true;  // float_overflow/underflow: NaN on purpose (null in the row)
     for (double v : {s.peak, s.peak_u_deg, s.peak_v_deg, s.aspect, s.eccentricity, s.major_deg, s.minor_deg,
                      s.orientation_deg, s.centroid_u_deg, s.centroid_v_deg, s.fwhm_u_deg, s.fwhm_v_deg, s.area_deg2})
         if (!std::isfinite(v)) return false;
@@ -141,7 +142,8 @@ bool shapeFinite(const analysis::Shape& s) {
 
 bool numbersOrDiagnosis(const analysis::Shape& s) {
     using analysis::Flag;
-    if (s.has(Flag::NoHighlight) || s.has(Flag::Mirror) || s.has(Flag::UnderResolved)) return true;
+    if (s.has(Flag::NoHighlight) || s.has(Flag::Mirror) || s.has(Flag::UnderResolved) || analysis::unmeasured(s))
+        return true;
     return s.peak > 0 && s.major_deg > 0;
 }
 

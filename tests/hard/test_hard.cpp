@@ -41,7 +41,7 @@ bool comparable(const analysis::Shape& s) {
     using analysis::Flag;
     for (Flag f : {Flag::Clipped, Flag::UnderResolved, Flag::NoHighlight, Flag::CoversFrame, Flag::Mirror,
                    Flag::EffectivelyMirror, Flag::UnboundedAtHorizon, Flag::NotStarShaped, Flag::NotConverged,
-                   Flag::LightUndersampled})
+                   Flag::LightUndersampled, Flag::FloatOverflow, Flag::FloatUnderflow})
         if (s.has(f)) return false;
     return true;
 }

@@ -194,3 +194,16 @@ TEST_CASE("measure --renderer cpu and --supersample") {
     const auto ss = measureJson(flags("--incidence 60 --size 64 --supersample 3")).at(0);
     CHECK(ss["renders"].get<int>() >= 10);  // aiming + 9 jittered
 }
+
+TEST_CASE("a .brdf with an infinite peak is float_overflow, not aspect 1 and major 0") {
+    // 1 / (1 - R.V) is inf at the mirror direction (before: aspect 1, major 0, peak null, no flag).
+    const std::string file = tmpPath("inf-peak.brdf");
+    std::ofstream(file) << "analytic\n::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)\n{\n"
+                           "    vec3 R = reflect(-L, N);\n    return vec3(1.0 / max(0.0, 1.0 - dot(R, V)));\n}\n"
+                           "::end shader\n";
+    const auto rows = measureJson(flags("--brdf " + file + " --incidence 30 --size 64"));
+    std::filesystem::remove(file);
+    REQUIRE(rows.size() == 1);
+    CHECK(rows[0]["flags"] == nlohmann::json::array({"float_overflow"}));
+    for (const char* k : {"aspect", "major_deg", "minor_deg"}) CHECK(rows[0][k].is_null());
+}

@@ -178,3 +178,34 @@ TEST_CASE("measured: material.measured sweeps in an experiment like any key, pat
     CHECK(got[3]["model"] == "measured:beck.binary");
     CHECK(double(got[1]["aspect"]) != double(got[3]["aspect"]));  // two tables, two highlights at 40 deg
 }
+
+TEST_CASE("measured: a table past float's range is named float_overflow / float_underflow, its shape not a number") {
+    // Before: x 1e300 gave aspect 0, major 0, peak 0, only under_resolved; a constant 1e-320 table aspect 1, peak 0.
+    Table t;
+    brdf::merl::MeasuredBrdf big = brdf::merl::read(t.file), tiny = big;
+    for (double& e : big.raw)
+        if (e >= 0) e *= 1e300;             // finite doubles, inf as float texels
+    for (double& e : tiny.raw) e = 1e-320;  // a double denormal, 0 as a float
+    const std::string bigFile = t.dir / "big.binary", tinyFile = t.dir / "tiny.binary";
+    std::ofstream(bigFile, std::ios::binary) << brdf::merl::encode(big);
+    std::ofstream(tinyFile, std::ios::binary) << brdf::merl::encode(tiny);
+    for (const char* renderer : {"gl", "cpu"}) {
+        CAPTURE(renderer);
+        const std::string r = std::string(" --incidence 30 --size 64 --renderer ") + renderer;
+        const auto over = measureJson(flags("--measured " + bigFile + r));
+        REQUIRE(over.size() == 1);
+        CHECK(over[0]["flags"] == nlohmann::json::array({"float_overflow"}));
+        for (const char* k : {"aspect", "major_deg", "minor_deg", "peak"}) CHECK(over[0][k].is_null());
+        CHECK_FALSE(over[0].contains("table_error"));  // no shape, no error of it
+        const auto under = measureJson(flags("--measured " + tinyFile + r));
+        REQUIRE(under.size() == 1);
+        CHECK(under[0]["flags"] == nlohmann::json::array({"float_underflow"}));
+        CHECK(under[0]["aspect"].is_null());
+    }
+    // The double reference holds 1e300 x the table: the unscaled table's shape.
+    const auto ref = measureJson(flags("--measured " + bigFile + " --incidence 30 --reference"));
+    const auto plain = measureJson(flags("--measured " + t.file + " --incidence 30 --reference"));
+    REQUIRE(ref.size() == 1);
+    CHECK(ref[0]["flags"].empty());
+    CHECK(ref[0]["aspect"].get<double>() == doctest::Approx(plain[0]["aspect"].get<double>()).epsilon(1e-9));
+}

@@ -41,10 +41,17 @@ enum class Flag {
     /// a sphere or disk light: the GL rule's points over the light are too sparse for the lobe (its radiance
     /// differs from the exact integral by more than 1% of the peak: light_rule_error); raise --light-rings
     LightUndersampled,
+    /// the radiance left float32's range: pixels hold inf or NaN (an infinite peak, or f, L or a product of them
+    /// above 3.4e38), or the double twin's peak is above it; the shape fields are not measured (NaN, null in rows)
+    FloatOverflow,
+    /// the region's level (threshold x peak) is below the smallest normal float32 (1.2e-38): the pixels hold 0 or
+    /// denormals there, not the lobe; the shape fields are not measured (NaN, null in rows)
+    FloatUnderflow,
 };
 
 /// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame", "mirror",
-/// "effectively_mirror", "unbounded_at_horizon", "not_star_shaped" (the CLI/JSON spelling).
+/// "effectively_mirror", "unbounded_at_horizon", "not_star_shaped", ..., "float_overflow", "float_underflow" (the
+/// CLI/JSON spelling).
 const char* toString(Flag);
 std::ostream& operator<<(std::ostream&, Flag);
 
@@ -131,6 +138,13 @@ struct Shape {
     bool has(Flag f) const;
 };
 std::ostream& operator<<(std::ostream&, const Shape&);
+
+/// Whether the shape carries a flag that leaves its numbers unmeasured (float_overflow, float_underflow).
+bool unmeasured(const Shape& s);
+/// Marks the shape's numbers as not measured under `why` (float_overflow or float_underflow): every number NaN
+/// (null in a row, "-" in a table), no parts, components 0, and the flags that described the numbers
+/// (no_highlight, under_resolved, clipped, ...) dropped, so a row cannot read as a clean measurement.
+void setUnmeasured(Shape& s, Flag why);
 
 /// \brief Fill the ellipse fields of `s` (aspect, eccentricity, axes, orientation, centroid, area)
 /// from the moments, by the closed-form eigen-decomposition of the symmetric 2x2 matrix.
