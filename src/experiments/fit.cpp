@@ -27,7 +27,8 @@ using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// The row flags that leave no shape to compare (analysis/highlight.hpp).
-const char* const kUnusable[] = {"no_highlight", "mirror", "unbounded_at_horizon", "effectively_mirror"};
+const char* const kUnusable[] = {"no_highlight",       "mirror",         "unbounded_at_horizon",
+                                 "effectively_mirror", "float_overflow", "float_underflow"};
 
 /// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0.
 struct Space {
@@ -409,6 +410,18 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
     std::vector<Space> spaces;
     for (const std::string& m : o.models) spaces.push_back(spaceOf(m, o));
     r.samples = measureSweep(session, targetScenes, r);
+    // A threshold whose level underflows float at every angle measures nothing (the region becomes "every pixel
+    // above 0", the same for every model: a fit at a search bound ranked first): refused, not fitted around.
+    for (size_t j = 0; j < r.thresholds.size(); ++j) {
+        bool under = true;
+        for (size_t i = 0; i < r.angles.size() && under; ++i)
+            under = r.samples[i * r.thresholds.size() + j].why.find("float_underflow") != std::string::npos;
+        if (under)
+            throw InputError("--thresholds: " + fmt(r.thresholds[j]) +
+                             " cannot be measured: threshold x the target's peak is below the smallest normal float "
+                             "(1.2e-38) at every incidence (float_underflow); give thresholds in (0, 1) whose level "
+                             "stays above it");
+    }
     if (std::none_of(r.samples.begin(), r.samples.end(), [](const FitSample& s) { return s.usable; }))
         throw InputError("fit: the target shows no measurable highlight at any incidence and threshold (" +
                          r.samples.front().why + ")");

@@ -211,3 +211,17 @@ TEST_CASE("fit: --fit-anisotropy recovers both roughnesses, --fit-f0 Schlick's F
     CHECK_NEAR(f[0]["params"]["roughness"].get<double>() / 0.1, 1, 0.01);
     CHECK_NEAR(f[0]["params"]["f0"].get<double>() / 0.5, 1, 0.01);
 }
+
+TEST_CASE("fit: a threshold whose level underflows float is refused in one line, not fitted at a search bound") {
+    // Before: --thresholds 1e-300 ranked ggx at its bound (roughness 0.001) first against GGX 0.1, residual 2.1e-3.
+    const std::string why = inputError([] {
+        fit("--model ggx --roughness 0.1 --incidence 30 --size 64", "", options("ggx", {1e-300, 0.5}));
+    });
+    CAPTURE(why);
+    CHECK(oneLine(why));
+    CHECK(why.rfind("--thresholds: 1e-300 cannot be measured", 0) == 0);
+    CHECK(why.find("float_underflow") != std::string::npos);
+    // A threshold whose level stays a normal float still fits back to the target.
+    const auto r = fit("--model ggx --roughness 0.1 --incidence 30 --size 64", "", options("ggx", {1e-20, 0.5}));
+    CHECK(r.fits.at(0).params.at("roughness").get<double>() == doctest::Approx(0.1).epsilon(0.05));
+}
