@@ -22,11 +22,12 @@ uniform vec3 uCamPos;     // the eye
 uniform int uRings;          // the rule: n Gauss-Legendre nodes in u = 1 - cos(beta) x 4n azimuths
 uniform float uRingX[32];    // nodes in (0, 1) and weights (summing to 1), render::ringRule
 uniform float uRingW[32];
-uniform float uCapRadiance;  // L: sphere I / (pi R^2), disk E / (pi sin^2 delta)
+uniform float uCapRadiance;  // sphere: L = I / (pi R^2) (the disk sets uCapPower)
 #if defined(HILITE_LIGHT_SPHERE)
 uniform float uLightRadius;  // R
 #else
 uniform float uCapU;         // 1 - cos(delta)
+uniform float uCapPower;     // disk: L (1 - cos(delta)) = E / (2 pi cos^2(delta / 2)), finite however small delta is
 #endif
 #endif
 uniform vec3 uWr;         // chart: mirror direction, +u (towards the normal), +v
@@ -67,7 +68,9 @@ vec2 chartCoords(vec3 we, out float rhoOverSin) {
 // int_cap f(wi, we) L cos(theta_i) dwi over a cap of directions (centre c, capU = 1 - cos(angular radius)) by the
 // rule of uRings rings x 4 uRings azimuths, each ray cut at the horizon. Twin: render::capRule (render/area_light.cpp).
 // No inverse trigonometry: llvmpipe's asin and atan are good to ~1e-4 only.
-vec3 capRadiance(vec3 c, float capU, vec3 we) {
+// capPower = L capU: the rule weighs each ray by its share uMax / capU of the cap, so that a disk too small for
+// float (L = E / (pi sin^2 delta) past 3.4e38, capU a denormal or 0 at delta = 1e-20 deg) still gives E f cos.
+vec3 capRadiance(vec3 c, float capU, float capPower, vec3 we) {
     float s = length(c.xy);  // tangent frame: a points down toward the horizon, b is horizontal
     vec3 a = s > 0.0 ? vec3(c.x * c.z / s, c.y * c.z / s, -s) : vec3(1.0, 0.0, 0.0);
     vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
@@ -78,15 +81,17 @@ vec3 capRadiance(vec3 c, float capU, vec3 we) {
         float cp = cos(phi), sp = sin(phi);
         // The horizon ends the ray where 1 - cos(beta) = c.z^2 / (r (r - k)), k = cp a.z < 0 (render::horizonEdge).
         float k = cp * a.z, r = sqrt(k * k + c.z * c.z);
-        float uMax = k >= 0.0 ? capU : min(capU, r > 0.0 ? c.z * c.z / (r * (r - k)) : 0.0);
+        float edge = k >= 0.0 ? capU : (r > 0.0 ? c.z * c.z / (r * (r - k)) : 0.0);
+        float share = edge >= capU ? 1.0 : edge / capU;  // uMax / capU, without 0 / 0 for a cap float holds as 0
+        float uMax = capU * share;
         vec3 d = cp * a + sp * b;
         for (int i = 0; i < uRings; ++i) {
             float u = uMax * uRingX[i];
             vec3 wi = (1.0 - u) * c + sqrt(u * (2.0 - u)) * d;
-            if (wi.z > 0.0) sum += (uRingW[i] * uMax * wi.z) * brdf(wi, we);
+            if (wi.z > 0.0) sum += (uRingW[i] * share * wi.z) * brdf(wi, we);
         }
     }
-    return sum * (uCapRadiance * 6.283185307 / float(m));
+    return sum * (capPower * 6.283185307 / float(m));
 }
 #endif
 
@@ -103,9 +108,11 @@ void main() {
     vec3 wi = toLight / dist;
     float sinAlpha = min(1.0, uLightRadius / dist);
     float capU = sinAlpha * sinAlpha / (1.0 + sqrt(1.0 - sinAlpha * sinAlpha));  // 1 - cos(alpha)
+    float capPower = uCapRadiance * capU;
 #elif defined(HILITE_LIGHT_DISK)
     vec3 wi = uWi;  // the disk's centre; part of it may lie below the horizon (capRadiance cuts each ray)
     float capU = uCapU;
+    float capPower = uCapPower;
 #elif defined(HILITE_LIGHT_POINT)
     // Point light: wi and the irradiance I cos(theta_i) / d^2 belong to the point this pixel sees.
     vec3 P = uCamPos - (uCamPos.z / we.z) * we;
@@ -126,7 +133,7 @@ void main() {
         return;
     }
 #if defined(HILITE_LIGHT_AREA)
-    vec3 rad = capRadiance(wi, capU, we);
+    vec3 rad = capRadiance(wi, capU, capPower, we);
 #elif defined(HILITE_BUMPS)
     // Explicit micro-geometry: mirror facets of the bump field under a soft sun (shaders/micro.glsl).
     vec3 rad = bumpRadiance(gl_FragCoord.xy, wi, E, uCamBack, uCamRight, uCamUp, uTanHalf, uViewport);

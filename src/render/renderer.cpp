@@ -174,9 +174,14 @@ void setAreaLightUniforms(const gl::Program& prog, const Scene& scene) {
     glUniform1fv(prog.uniform("uRingX"), kMaxRings, x);
     glUniform1fv(prog.uniform("uRingW"), kMaxRings, w);
     const LightCap cap = lightCap(scene.light, scene.light.position());  // L (and the disk's cap) hold everywhere
-    prog.set("uCapRadiance", float(cap.radiance));
-    if (scene.light.type == LightType::Sphere) prog.set("uLightRadius", float(scene.light.radius));
-    else prog.set("uCapU", float(cap.uMax));
+    if (scene.light.type == LightType::Sphere) {
+        prog.set("uCapRadiance", float(cap.radiance));
+        prog.set("uLightRadius", float(scene.light.radius));
+    } else {  // L x (1 - cos delta) in closed form: L alone is past float's range below delta ~ 1e-18 deg
+        const double halfCos = std::cos(0.5 * cap.halfAngle);
+        prog.set("uCapPower", float(scene.light.irradiance / (2.0 * kPi * halfCos * halfCos)));
+        prog.set("uCapU", float(cap.uMax));
+    }
 }
 
 }  // namespace

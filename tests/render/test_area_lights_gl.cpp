@@ -151,6 +151,11 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
         const analysis::Shape a = measureShape(dir), b = measureShape(withDisk(dir, 1e-4));
         CHECK_NEAR(a.aspect, b.aspect, 1e-3);
         CHECK(b.flags.empty());
+        // 1e-20 deg: L = E / (pi sin^2 delta) ~ 1e43 is past float's range (before: peak 0, under_resolved).
+        const analysis::Shape c = measureShape(withDisk(dir, 1e-20));
+        CHECK_NEAR(a.aspect, c.aspect, 1e-3);
+        CHECK(c.peak == doctest::Approx(a.peak).epsilon(1e-4));
+        CHECK(c.flags.empty());
     }
     // GGX 0.02 at 80 deg: the sun's disk (0.266 deg) is comparable with the lobe's minor half-width (0.26 deg):
     // it rounds the highlight; the automatic rule's aspect is within 1e-3 of 16 rings' (the price list compares
