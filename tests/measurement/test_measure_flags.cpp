@@ -207,3 +207,19 @@ TEST_CASE("a .brdf with an infinite peak is float_overflow, not aspect 1 and maj
     CHECK(rows[0]["flags"] == nlohmann::json::array({"float_overflow"}));
     for (const char* k : {"aspect", "major_deg", "minor_deg"}) CHECK(rows[0][k].is_null());
 }
+
+TEST_CASE("a thin ring of a tabulated NDF off the mirror direction: the reference finds it as GL does") {
+    // D > 0 only at theta_h 0.5-0.7 deg: dark at every survey grid sample and at the mirror direction (before:
+    // the reference said no_highlight, peak 0, while GL measured major 1.698 deg).
+    const std::string file = tmpPath("ring.csv");
+    std::ofstream(file) << "theta_h_deg, D\n0, 0\n0.5, 0\n0.6, 10\n0.7, 0\n90, 0\n";
+    const std::string args = "--model tabulated --ndf-table " + file + " --incidence 30";
+    const auto ref = measureJson(flags(args + " --reference"));
+    const auto gl = measureJson(flags(args));
+    std::filesystem::remove(file);
+    REQUIRE(ref.size() == 1);
+    REQUIRE(gl.size() == 1);
+    CHECK(ref[0]["flags"].empty());
+    CHECK(ref[0]["peak"].get<double>() > 0);
+    CHECK(ref[0]["major_deg"].get<double>() == doctest::Approx(gl[0]["major_deg"].get<double>()).epsilon(0.02));
+}
