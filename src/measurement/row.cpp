@@ -7,6 +7,7 @@
 #include "measurement/peak_frame.hpp"
 #include "measurement/tolerance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -100,8 +101,12 @@ TableError tableError(render::Renderer* renderer, const scene::Resolved& r, cons
     if (full.major_deg > 0 && full.minor_deg > 0) {
         const double a = full.aspect * (e[2] / full.major_deg + e[3] / full.minor_deg);
         e[0] = std::max(e[0], a);
-        if (full.eccentricity > 0) e[1] = std::max(e[1], full.aspect * e[0] / full.eccentricity);
     }
+    // The eccentricity's error from the aspect's as the change of sqrt(1 - a^2) over the aspect's interval, not
+    // its first-order slope a / e, which is unbounded on a round highlight (7.4e6 there); it lies in [0, 1], so
+    // it is never off by more than max(e, 1 - e).
+    e[1] = std::min(std::max(e[1], eccentricityChange(full.aspect, e[0])),
+                    std::max(full.eccentricity, 1.0 - full.eccentricity));
     return TableError{e[0], e[1], e[2], e[3]};
 }
 
@@ -189,6 +194,13 @@ Result resultOf(const scene::Resolved& r, const Measurement& m, int width, int h
 }
 
 }  // namespace
+
+double eccentricityChange(double aspect, double aspectError) {
+    // sqrt(1 - a^2) falls as a rises: its largest change over the interval is at one of the interval's ends.
+    const auto ecc = [](double a) { return std::sqrt(std::max(0.0, 1.0 - a * a)); };
+    const double a = std::clamp(aspect, 0.0, 1.0), d = std::abs(aspectError), e = ecc(a);
+    return std::max(std::abs(ecc(std::max(0.0, a - d)) - e), std::abs(ecc(std::min(1.0, a + d)) - e));
+}
 
 json toJson(const Result& res) {
     const scene::Resolved& r = res.resolved;

@@ -4,7 +4,11 @@
 
 #include "hard/hard_cases.hpp"
 
+#include "brdf/merl.hpp"
+#include "hilite/measurement/row.hpp"
+#include "hilite/scene/resolve.hpp"
 #include "support/gl_fixture.hpp"
+#include "support/temp_dir.hpp"
 
 #include <doctest/doctest.h>
 
@@ -12,6 +16,7 @@
 
 #include <cmath>
 #include <deque>
+#include <fstream>
 #include <string>
 #include <utility>
 
@@ -154,4 +159,52 @@ TEST_CASE("hard tables fit the registration") {
     CHECK(registered == 0);
     CHECK(sceneCases().size() <= kMaxRows);
     CHECK(termCases().size() <= kMaxRows);
+}
+
+// ---- table_error: the bounds of a measured table's error fields ----
+
+TEST_CASE("hard table_error: eccentricityChange in closed form, within [0, 1]") {
+    // a 0.6 +- 0.2: e(0.6) = 0.8, e(0.4) = sqrt(0.84), e(0.8) = 0.6; the larger change is 0.2.
+    CHECK_NEAR(measurement::eccentricityChange(0.6, 0.2), 0.2, 1e-15);
+    // Round: e(1) = 0, e(1 - d) = sqrt(2 d - d^2).
+    CHECK_NEAR(measurement::eccentricityChange(1.0, 0.19), std::sqrt(1.0 - 0.81 * 0.81), 1e-15);
+    CHECK(measurement::eccentricityChange(1.0, 0.0) == 0.0);
+    // An interval past [0, 1] is cut there: 0.5 +- 2 spans a in [0, 1], e from 0 to 1 about e(0.5) = sqrt(0.75).
+    CHECK_NEAR(measurement::eccentricityChange(0.5, 2.0), std::sqrt(0.75), 1e-15);
+    for (double a = 0; a <= 1.0; a += 0.125)
+        for (double d : {0.0, 1e-12, 1e-3, 0.1, 1.0, 10.0, 1e300}) {
+            const double c = measurement::eccentricityChange(a, d);
+            CHECK(c >= 0.0);
+            CHECK(c <= 1.0);
+        }
+}
+
+TEST_CASE("hard table_error: a round highlight (retro n 100 tabulated, theta_i 0) has an eccentricity error <= 1") {
+    // Its eccentricity is ~2e-7 (aspect 1 - 2e-14): the slope a / e of the old first-order propagation gave an
+    // eccentricity error of 9.5e5 here. The error now is the change of sqrt(1 - a^2) over the aspect's error.
+    hilite_test::TempDir dir("hilite-hard-table-error");
+    const std::string file = dir / "retro.binary";
+    {
+        scene::Values v;
+        v.set("model", "retro");
+        v.set("exponent", "100");
+        const brdf::Params p = scene::resolve(v, scene::Purpose::Brdf).scene.brdf;
+        std::ofstream(file, std::ios::binary) << brdf::merl::encode(brdf::merl::tabulate(p));
+    }
+    scene::Values v;
+    v.set("measured", file);
+    v.set("incidence", "0");
+    v.set("reference", "true");
+    const measurement::Result r = measurement::measureRow(nullptr, scene::resolve(v));
+    REQUIRE(r.tableError);
+    const measurement::TableError& e = *r.tableError;
+    INFO("aspect " << r.shape().aspect << " +- " << e.aspect << ", eccentricity " << r.shape().eccentricity << " +- "
+                   << e.eccentricity);
+    CHECK(r.shape().aspect > 1.0 - 1e-9);
+    CHECK(e.aspect > 0.0);
+    CHECK(e.eccentricity >= 0.0);
+    CHECK(e.eccentricity <= 1.0);
+    // Round, so the aspect's interval reaches down to 1 - e.aspect alone: e = sqrt(1 - (1 - d)^2) there.
+    const double d = e.aspect, atEnd = std::sqrt(1.0 - (1.0 - d) * (1.0 - d));
+    CHECK_NEAR(e.eccentricity, atEnd - r.shape().eccentricity, 1e-9);
 }

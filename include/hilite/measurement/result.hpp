@@ -55,6 +55,10 @@ struct TableError {
     double aspect = 0, eccentricity = 0, major_deg = 0, minor_deg = 0;
 };
 
+/// The largest change of the eccentricity sqrt(1 - a^2) while the aspect a moves by up to `aspectError` within
+/// [0, 1]: the eccentricity's share of table_error, in [0, 1] (0.6 +- 0.2: 0.2, the end at 0.8).
+double eccentricityChange(double aspect, double aspectError);
+
 /// What rendered a GL measurement (GL_RENDERER, GL_VENDOR).
 struct GlInfo {
     std::string backend, renderer, vendor;
