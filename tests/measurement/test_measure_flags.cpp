@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -222,4 +223,16 @@ TEST_CASE("a thin ring of a tabulated NDF off the mirror direction: the referenc
     CHECK(ref[0]["flags"].empty());
     CHECK(ref[0]["peak"].get<double>() > 0);
     CHECK(ref[0]["major_deg"].get<double>() == doctest::Approx(gl[0]["major_deg"].get<double>()).epsilon(0.02));
+}
+
+TEST_CASE("a ring of a tabulated NDF 30 deg off the mirror direction: the reference names its budget, not an error") {
+    // D > 0 only at theta_h 30-30.4 deg, at 30 deg: the region grows past every box enlargement; before, the
+    // reference threw "internal error: measureLines: the region keeps growing past its boxes" (exit 3).
+    const std::string file = tmpPath("ring30.csv");
+    std::ofstream(file) << "theta_h_deg, D\n0, 0\n30, 0\n30.2, 10\n30.4, 0\n90, 0\n";
+    const auto ref = measureJson(flags("--model tabulated --ndf-table " + file + " --incidence 30 --reference"));
+    std::filesystem::remove(file);
+    REQUIRE(ref.size() == 1);
+    const auto& f = ref[0]["flags"];
+    CHECK(std::find(f.begin(), f.end(), "not_converged") != f.end());
 }
