@@ -356,6 +356,10 @@ void checkFitOptions(const FitOptions& o) {
             sum += w;
         }
         if (!(sum > 0)) throw InputError("--weights: at least one must be > 0");
+        // Relative weights, divided by their sum: an infinite sum would make every weight 0 and every fit a tie.
+        if (!std::isfinite(sum))
+            throw InputError("--weights: their sum must be finite (got " + fmt(sum) +
+                             "): they are relative, scale them down");
     }
     if (o.anisotropy && std::none_of(o.models.begin(), o.models.end(),
                                      [](const std::string& m) { return brdf::allowsAnisotropy(*brdf::parseModel(m)); }))

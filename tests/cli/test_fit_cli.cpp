@@ -24,6 +24,7 @@ TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, n
         {"--model ggx --thresholds 0.1,x", "--thresholds: 'x' is not a number"},
         {"--model ggx --weights 1,2", "--weights: one per threshold (5), got 2"},
         {"--model ggx --weights 0,0,0,0,0", "--weights: at least one must be > 0"},
+        {"--model ggx --weights 1e308,1e308,0,0,0", "--weights: their sum must be finite"},
         {"--target " + (dir / "x.txt"), "--target: '"},
         {"--target " + (dir / "missing.binary"), "--target: cannot read"},
         {"--model ggx --models phong --fit-anisotropy", "--fit-anisotropy: needs beckmann or ggx"},
