@@ -27,6 +27,7 @@ const char* toString(Flag f) {
         case Flag::LightUndersampled: return "light_undersampled";
         case Flag::FloatOverflow: return "float_overflow";
         case Flag::FloatUnderflow: return "float_underflow";
+        case Flag::PeakOnHorizon: return "peak_on_horizon";
     }
     return "unknown";
 }

@@ -17,10 +17,12 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace hilite::measurement {
 
@@ -101,14 +103,24 @@ struct Aim {
 /// aim (off-specular shift, anisotropy, horizon) until the region sits inside the frame and fills most of it.
 /// Aiming at one part of a region in several parts: its views keep only its pixels (keepPart), and the
 /// region is L >= level, the global peak's.
+/// A part's measured view (its camera and luminance), kept so that a later part's view does not count a
+/// piece of the same region again.
+struct CountedView {
+    PinholeCamera camera;
+    std::vector<float> L;  ///< row-major, camera.width x camera.height
+    double level = 0;      ///< the region there: L >= level
+    bool holds(const dvec3& ray) const;
+};
+
 struct PartAim {
     const render::Scene* scene = nullptr;
     const LobeSurvey* survey = nullptr;
     int part = 0;
     double level = 0;
+    const std::vector<CountedView>* counted = nullptr;  ///< the views of the parts measured before this one
 };
 
-void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part);  // below
+void keepPart(ImageF& img, const PinholeCamera& cam, const PartAim& part);  // below
 
 Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup, Frame& frame, Measurement& m,
              const PartAim* part = nullptr, const std::function<void()>& whileFirstDrawn = {}) {
@@ -132,7 +144,7 @@ Aim aimFrame(const ViewFn& view, const render::Scene& scene, const MeasureSetup&
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
-        if (part) keepPart(coarse, *part->scene, *part);
+        if (part) keepPart(coarse, aim.camera, *part);
         aim.box = part ? regionBoxAbove(coarse, part->level) : regionBox(coarse, setup.options.threshold);
         aim.good = !aim.box.empty() && reframe(aim.camera, aim.box, setup.fill, frame);
         m.measure_ms += msSince(t0);
@@ -162,10 +174,30 @@ PixelRect cropOf(const Aim& aim, const PinholeCamera& fine) {
     return {ix0, iy0, ix1 - ix0, iy1 - iy0};
 }
 
+void keepLuminance(const ImageF& img, std::vector<float>& L) {
+    L.resize(size_t(img.width) * size_t(img.height));
+    for (size_t i = 0; i < L.size(); ++i) L[i] = img.data[4 * i];
+}
+
+bool CountedView::holds(const dvec3& ray) const {
+    double nx = 0, ny = 0;
+    if (!camera.project(ray, nx, ny)) return false;
+    const double px = 0.5 * (nx + 1.0) * camera.width, py = 0.5 * (ny + 1.0) * camera.height;
+    if (!(px >= -1 && px < camera.width + 1 && py >= -1 && py < camera.height + 1)) return false;
+    // The pixel and its 8 neighbours: a brightest pixel on the horizon (or another edge of the region) may
+    // fall just outside the earlier view's region (measured: 1.5e-5 above the horizon, in the pixel below it).
+    const int ix = int(std::floor(px)), iy = int(std::floor(py));
+    for (int y = std::max(0, iy - 1); y <= std::min(camera.height - 1, iy + 1); ++y)
+        for (int x = std::max(0, ix - 1); x <= std::min(camera.width - 1, ix + 1); ++x)
+            if (double(L[size_t(y) * size_t(camera.width) + size_t(x)]) >= level) return true;
+    return false;
+}
+
 /// The final render(s) of the frame and their analysis: one render and measureImage, or n x n jittered
 /// renders combined by the Supersampler.
 analysis::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const PixelRect& crop, const MeasureSetup& setup,
-                        Measurement& m, const PartAim* part = nullptr, double level = 0) {
+                        Measurement& m, const PartAim* part = nullptr, double level = 0,
+                        std::vector<float>* luminance = nullptr) {
     thread_local ImageF img;  // reused: the readback never reallocates (4 MB at 512x512)
     const int n = setup.supersample;
     analysis::Options options = setup.options;
@@ -177,8 +209,9 @@ analysis::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixe
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
-        if (part) keepPart(img, *part->scene, *part);
+        if (part) keepPart(img, cam, *part);
         analysis::Shape shape = analysis::measureImage(img.data.data(), img.width, img.height, options);
+        if (luminance) keepLuminance(img, *luminance);
         m.measure_ms += msSince(t0);
         return shape;
     }
@@ -190,8 +223,9 @@ analysis::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixe
         m.render_ms += msSince(t0);
         ++m.renders;
         t0 = Clock::now();
-        if (part) keepPart(img, *part->scene, *part);
+        if (part) keepPart(img, cam, *part);
         ss.add(img.data.data());
+        if (luminance) keepLuminance(img, *luminance);  // the last jitter's: enough to tell which region it is
         m.measure_ms += msSince(t0);
     }
     const auto t0 = Clock::now();
@@ -211,13 +245,16 @@ bool aimResolves(const LobeWidths& widths, const MeasureSetup& setup, const Fram
     return !(minor > 0) || 2.0 * minor >= 2.0 * pitch;
 }
 
-void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part) {
+void keepPart(ImageF& img, const PinholeCamera& cam, const PartAim& part) {
     // Image components of {L >= level} (4-connected; the level 0.1% lower so that each component holds all of
     // its part's pixels however the float peak differs from the twin's), each owned by the survey part its
     // brightest pixel lies in (the first in row order where several tie); the pixels of components owned by
     // another part are set to 0. Components are found as runs of a row joined to the runs they touch in the
     // row below (union-find): a pixel costs one comparison, where a flood fill pushed and popped each one.
-    const MirrorChart chart = scene.light.chart();
+    // A component this part owns whose brightest pixel lies in a region an earlier part's view measured is
+    // a piece of that region, cut by this view's edge so that its brightest pixel is not the region's (a GGX
+    // 0.05 x 0.2 lobe at 60 deg, split in 3 by the survey: the second view counted 76 deg^2 of the first's).
+    const MirrorChart chart = part.scene->light.chart();
     const int W = img.width, H = img.height;
     const double level = part.level * (1.0 - 1e-3);
     struct Run {
@@ -280,6 +317,12 @@ void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part) {
                 }
             }
         }
+        if (owner == part.part && part.counted) {
+            const int b = brightest[r];
+            const dvec3 ray = cam.ray(b % W + 0.5, b / W + 0.5);
+            for (const CountedView& v : *part.counted)
+                if (v.holds(ray)) owner = -1;
+        }
         another[r] = owner != part.part;
     }
     for (size_t r = 0; r < runs.size(); ++r) {
@@ -293,22 +336,25 @@ void keepPart(ImageF& img, const render::Scene& scene, const PartAim& part) {
 /// at the level of the global peak (frac x the brightest pixel of the part holding the peak, measured
 /// first), and the parts' moments added (they are disjoint). `parts` says each part's own ellipse.
 Measurement measureParts(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup,
-                         const LobeSurvey& survey) {
+                         const LobeSurvey& survey, double firstLevel) {
     Measurement m;
     m.framing = "automatic (" + std::to_string(survey.parts.size()) + " parts, a view each)";
     const MirrorChart chart = scene.light.chart();
     analysis::Shape total;
     analysis::AreaMoments moments;
     double level = 0;
+    std::vector<CountedView> counted;
     for (size_t k = 0; k < survey.parts.size(); ++k) {
         const SurveyPart& p = survey.parts[k];
-        PartAim part{&scene, &survey, int(k), k == 0 ? survey.level : level};
+        PartAim part{&scene, &survey, int(k), k == 0 ? survey.level : level, &counted};
         const double half = 0.5 * std::max(p.u1 - p.u0, p.v1 - p.v0);
         Frame frame{liftAboveHorizon(chart.direction(0.5 * (p.u0 + p.u1), 0.5 * (p.v0 + p.v1))),
                     std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(half, 1.3)))), kMinFovDeg, kMaxFovDeg)};
         aimFrame(view, scene, setup, frame, m, &part);
         const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
-        const analysis::Shape s = analyse(view, cam, PixelRect{}, setup, m, &part, k == 0 ? 0.0 : level);
+        CountedView seen{cam, {}, 0};
+        const analysis::Shape s =
+            analyse(view, cam, PixelRect{}, setup, m, &part, k == 0 ? firstLevel : level, &seen.L);
         if (k == 0) {
             level = setup.options.threshold * s.peak;
             total = s;  // the peak, its place and the widths through it
@@ -321,6 +367,8 @@ Measurement measureParts(const ViewFn& view, const render::Scene& scene, const M
         ps.holds_peak = k == 0;
         ps.measured = !s.has(analysis::Flag::NoHighlight);
         if (ps.measured) moments = analysis::combine(moments, s.moments);
+        seen.level = level;
+        counted.push_back(std::move(seen));
         total.parts.push_back(ps);
         if (k > 0) {
             total.region_pixels += s.region_pixels;
@@ -363,6 +411,34 @@ std::optional<LobeSurvey> surveyFor(const render::Scene& scene, double threshold
     return s;
 }
 
+/// A peak on the horizon: the widths along the chart lines through it that leave the visible hemisphere on
+/// both sides there are not the lobe's (0 in the limit; a pixel centre 0.01 deg above the horizon gave 33.7 deg
+/// along an image column): null, flagged peak_on_horizon. The line that climbs into the region keeps its width.
+void flagPeakOnHorizon(const render::Scene& scene, const std::optional<LobeSurvey>& survey, analysis::Shape& shape) {
+    if (!survey || !survey->peakOnHorizon || survey->unbounded || analysis::unmeasured(shape) ||
+        shape.has(analysis::Flag::NoHighlight))
+        return;
+    const MirrorChart chart = scene.light.chart();
+    const dvec2 p = survey->peakUV;
+    // 1e-3 rad along the line: far past the peak's height above the horizon (the climb ends within ~1e-10 rad
+    // of it), near enough that the line has not curved back up.
+    const double e = 1e-3;
+    const auto leaves = [&](dvec2 d) {
+        return chart.direction(p.x + e * d.x, p.y + e * d.y).z <= 0 &&
+               chart.direction(p.x - e * d.x, p.y - e * d.y).z <= 0;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (leaves({1, 0})) shape.fwhm_u_deg = nan, shape.flags.insert(analysis::Flag::PeakOnHorizon);
+    if (leaves({0, 1})) shape.fwhm_v_deg = nan, shape.flags.insert(analysis::Flag::PeakOnHorizon);
+}
+
+/// The region's level where no pixel centre reaches the peak: a peak on the horizon is the lobe's limit there,
+/// and the brightest pixel lies up to a pixel above it (measured: 1% below the sup at 512^2, GGX 0.2 + Smith +
+/// Schlick at 45 deg, the aspect 1.1% off). Else 0: threshold x the image's own peak.
+double horizonLevel(const std::optional<LobeSurvey>& survey, double threshold) {
+    return survey && survey->peakOnHorizon && !survey->unbounded ? threshold * survey->peak : 0.0;
+}
+
 /// A lobe the survey found unbounded toward the horizon has no peak, however ordinary its pixels look.
 void flagUnbounded(const std::optional<LobeSurvey>& survey, analysis::Shape& shape) {
     if (survey && survey->unbounded) shape.flags.insert(analysis::Flag::UnboundedAtHorizon);
@@ -374,8 +450,9 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
                          std::to_string(setup.supersample) + ")");
     const std::optional<LobeSurvey> survey = surveyFor(scene, setup.options.threshold);
     if (survey && !survey->unbounded && survey->parts.size() > 1 && setup.fovDeg <= 0) {
-        Measurement m = measureParts(view, scene, setup, *survey);
+        Measurement m = measureParts(view, scene, setup, *survey, horizonLevel(survey, setup.options.threshold));
         diagnose(scene, setup.options.threshold, path, m.shape);
+        flagPeakOnHorizon(scene, survey, m.shape);
         return m;
     }
     Measurement m;
@@ -394,12 +471,15 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     if (!haveWidths) findWidths();
     const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
     const PixelRect crop = setup.crop && aim.good && aimResolves(widths, setup, frame) ? cropOf(aim, cam) : PixelRect{};
-    m.shape = analyse(view, cam, crop, setup, m);
+    const double level = horizonLevel(survey, setup.options.threshold);
+    m.shape = analyse(view, cam, crop, setup, m, nullptr, level);
     // The region reached the crop's edge: the crop was too tight, not the frame. Measure the whole frame.
-    if (!crop.empty() && m.shape.has(analysis::Flag::Clipped)) m.shape = analyse(view, cam, PixelRect{}, setup, m);
+    if (!crop.empty() && m.shape.has(analysis::Flag::Clipped))
+        m.shape = analyse(view, cam, PixelRect{}, setup, m, nullptr, level);
     diagnose(scene, setup.options.threshold, path, m.shape, &widths);  // mirror, sub-pixel lobes, float limits
     if (survey && !survey->unbounded && survey->parts.size() > 1) flagPartsOutside(scene, *survey, cam, m.shape);
     flagUnbounded(survey, m.shape);
+    flagPeakOnHorizon(scene, survey, m.shape);
     if (analysis::unmeasured(m.shape))  // the flags above describe numbers that are not there
         analysis::setUnmeasured(m.shape, m.shape.has(analysis::Flag::FloatOverflow) ? analysis::Flag::FloatOverflow
                                                                                     : analysis::Flag::FloatUnderflow);
@@ -467,6 +547,7 @@ Measurement measureReference(const render::Scene& scene, const analysis::Options
         if (survey.unbounded) m.shape.flags.insert(analysis::Flag::UnboundedAtHorizon);
     }
     diagnose(scene, options.threshold, Path::Reference, m.shape);
+    if (survey.peak > 0 && !survey.unbounded) flagPeakOnHorizon(scene, survey, m.shape);
     m.measure_ms = msSince(t0);
     return m;
 }

@@ -135,8 +135,11 @@ SceneOutcome runSceneDouble(const SceneCase& c) {
 bool shapeFinite(const analysis::Shape& s) {
     if (analysis::unmeasured(s)) return true;  // float_overflow/underflow: NaN on purpose (null in the row)
     for (double v : {s.peak, s.peak_u_deg, s.peak_v_deg, s.aspect, s.eccentricity, s.major_deg, s.minor_deg,
-                     s.orientation_deg, s.centroid_u_deg, s.centroid_v_deg, s.fwhm_u_deg, s.fwhm_v_deg, s.area_deg2})
+                     s.orientation_deg, s.centroid_u_deg, s.centroid_v_deg, s.area_deg2})
         if (!std::isfinite(v)) return false;
+    // peak_on_horizon: a width whose line leaves the hemisphere at the peak is NaN on purpose (null in the row)
+    for (double v : {s.fwhm_u_deg, s.fwhm_v_deg})
+        if (!std::isfinite(v) && !(std::isnan(v) && s.has(analysis::Flag::PeakOnHorizon))) return false;
     return true;
 }
 

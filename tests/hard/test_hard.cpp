@@ -71,6 +71,13 @@ void sceneGl(size_t i) {
                    (c.aspectTolerance > 0 ? c.aspectTolerance : kAspectTolerance));
         const bool cut = o.measurement.shape.has(analysis::Flag::HorizonCut);
         CHECK_NEAR(o.measurement.shape.major_deg / ref.major_deg, 1.0, (cut ? kMajorToleranceCut : kMajorTolerance));
+        // A width is measured on both paths or on neither (peak_on_horizon: null on both).
+        CHECK(std::isnan(o.measurement.shape.fwhm_u_deg) == std::isnan(ref.fwhm_u_deg));
+        CHECK(std::isnan(o.measurement.shape.fwhm_v_deg) == std::isnan(ref.fwhm_v_deg));
+        // One region is one region: each counted once (a part seen in two views was counted twice).
+        CHECK(o.measurement.shape.components == ref.components);
+        CHECK(std::abs(o.measurement.shape.centroid_u_deg - ref.centroid_u_deg) <= kMajorToleranceCut * ref.major_deg);
+        CHECK(std::abs(o.measurement.shape.centroid_v_deg - ref.centroid_v_deg) <= kMajorToleranceCut * ref.major_deg);
     }
 }
 

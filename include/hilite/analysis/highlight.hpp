@@ -47,6 +47,11 @@ enum class Flag {
     /// the region's level (threshold x peak) is below the smallest normal float32 (1.2e-38): the pixels hold 0 or
     /// denormals there, not the lobe; the shape fields are not measured (NaN, null in rows)
     FloatUnderflow,
+    /// the peak lies on the horizon (the lobe still rises there) and the chart's u or v line through it leaves
+    /// the visible hemisphere on both sides at the peak: the width along that line (fwhm_u or fwhm_v) is not a
+    /// property of the lobe (0 in the limit, and any pixel's offset from the horizon changes it by degrees), so it
+    /// is null; the region's ellipse (aspect, axes, area, centroid) is measured as usual
+    PeakOnHorizon,
 };
 
 /// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame", "mirror",
