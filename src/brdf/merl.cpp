@@ -4,6 +4,7 @@
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
 
+#include <malloc.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -300,6 +301,10 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
     // Counted while alive (tablesHeld): a test of a sweep's memory sees how many tables it held at once.
     const std::shared_ptr<const MeasuredBrdf> table(new MeasuredBrdf(read(path, what)), [](const MeasuredBrdf* t) {
         delete t;
+        // Give the freed pages back: glibc raises its mmap threshold after the first big free, so the next tables'
+        // 17-35 MB buffers come from the heap, whose holes a process keeps (measured: a sweep over 10 tables
+        // peaked at 752 MB, over 30 at 943 MB, 100 fitted at 1.51 GB; with the trim 571 MB flat).
+        malloc_trim(0);
         const std::lock_guard<std::mutex> count(heldMutex);
         --held.now;
     });  // read throws before the cache changes
