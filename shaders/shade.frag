@@ -22,7 +22,7 @@ uniform vec3 uCamPos;     // the eye
 uniform int uRings;          // the rule: n Gauss-Legendre nodes in u = 1 - cos(beta) x 4n azimuths
 uniform float uRingX[32];    // nodes in (0, 1) and weights (summing to 1), render::ringRule
 uniform float uRingW[32];
-uniform float uCapRadiance;  // sphere: L = I / (pi R^2) (the disk sets uCapPower)
+uniform float uCapRadianceR2;  // sphere: L R^2 = I / pi, L = I / (pi R^2) (the disk sets uCapPower)
 #if defined(HILITE_LIGHT_SPHERE)
 uniform float uLightRadius;  // R
 #else
@@ -107,8 +107,11 @@ void main() {
     float dist = length(toLight);
     vec3 wi = toLight / dist;
     float sinAlpha = min(1.0, uLightRadius / dist);
-    float capU = sinAlpha * sinAlpha / (1.0 + sqrt(1.0 - sinAlpha * sinAlpha));  // 1 - cos(alpha)
-    float capPower = uCapRadiance * capU;
+    float onePlusCos = 1.0 + sqrt(1.0 - sinAlpha * sinAlpha);
+    float capU = sinAlpha * sinAlpha / onePlusCos;  // 1 - cos(alpha)
+    // L (1 - cos alpha) = L R^2 / (d^2 (1 + cos alpha)): L alone passes float's range below R ~ 3e-20, and
+    // sin^2(alpha) underflows below R / d ~ 1e-19 (a sphere of R 1e-18 at d 10 lit nothing: aspect 0, peak 0).
+    float capPower = uCapRadianceR2 / (dist * dist * onePlusCos);
 #elif defined(HILITE_LIGHT_DISK)
     vec3 wi = uWi;  // the disk's centre; part of it may lie below the horizon (capRadiance cuts each ray)
     float capU = uCapU;

@@ -175,7 +175,7 @@ void setAreaLightUniforms(const gl::Program& prog, const Scene& scene) {
     glUniform1fv(prog.uniform("uRingW"), kMaxRings, w);
     const LightCap cap = lightCap(scene.light, scene.light.position());  // L (and the disk's cap) hold everywhere
     if (scene.light.type == LightType::Sphere) {
-        prog.set("uCapRadiance", float(cap.radiance));
+        prog.set("uCapRadianceR2", float(cap.radiance * scene.light.radius * scene.light.radius));
         prog.set("uLightRadius", float(scene.light.radius));
     } else {  // L x (1 - cos delta) in closed form: L alone is past float's range below delta ~ 1e-18 deg
         const double halfCos = std::cos(0.5 * cap.halfAngle);

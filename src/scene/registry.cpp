@@ -640,31 +640,34 @@ std::vector<Param> build() {
          [](const Resolved& r) -> json { return r.scene.light.distance; }});
     bind(
         p.back(), [](auto& r) -> auto& { return r.scene.light.distance; });
+    // From 1e-100: below ~1e-155 the double twin's cap (1 - cos alpha ~ R^2 / 2d^2) underflows and the sphere
+    // lit nothing there (no_highlight, or float_overflow of L); GL holds L R^2, any R (shade.frag).
     add({"light_radius",
          T::Light,
          K::Number,
          "",
-         0,
+         1e-100,
          1e6,
-         true,
+         false,
          false,
          {},
          "",
          "sphere radius R, below its centre's height light_distance x cos(incidence) (a sphere that reaches the "
-         "plane is refused)",
+         "plane is refused; a tiny one measures as the point light)",
          "light sphere",
          sphere,
          "light_radius",
          [](const Resolved& r) -> json { return r.scene.light.radius; }});
     bind(
         p.back(), [](auto& r) -> auto& { return r.scene.light.radius; });
+    // From 1e-100 deg: below ~1e-155 deg the double twin's cap underflows (the reference said no_highlight).
     add({"light_angle",
          T::Light,
          K::Number,
          "",
-         0,
+         1e-100,
          90,
-         true,
+         false,
          true,
          {},
          "deg",

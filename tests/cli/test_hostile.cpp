@@ -126,9 +126,9 @@ std::vector<Case> flagCases() {
         {"--gpu", {"-1", "1.5", "''", "1023", "x"}},  // 1023: within the registry, beyond any machine's EGL devices
         {"--tint", {"1,2", "1,2,3,4", "nan", "-1"}},
         {"--light", {"bogus", "area", "''"}},
-        {"--light-radius",
-         {"0", "-1", "-0", "nan", "inf", "''"}},                  // a sphere has a size: zero or negative is no sphere
-        {"--light-angle", {"0", "90", "91", "-1", "nan", "''"}},  // an angular radius in (0, 90)
+        // A sphere has a size: zero or negative is no sphere; below 1e-100 the double twin's cap underflows.
+        {"--light-radius", {"0", "-1", "-0", "nan", "inf", "''", "1e-101"}},
+        {"--light-angle", {"0", "90", "91", "-1", "nan", "''", "1e-160"}},  // an angular radius in [1e-100, 90)
         {"--light-rings", {"0", "33", "1.5", "-1", "automatic", "''"}},
     };
     for (const auto& [flag, values] : numbers)
@@ -189,7 +189,7 @@ std::vector<Case> sceneCases(Scratch& s) {
         {"[light]\nroughness = 0.1\n", ":2: light.roughness"},
         {"[light]\nlight = \"sphere\"\nlight_radius = 9\nincidence = 60\n",
          ":3: light.light_radius: a sphere of radius 9"},
-        {"[light]\nlight = \"disk\"\nlight_angle = 90\n", ":3: light.light_angle: must be a finite number in (0, 90)"},
+        {"[light]\nlight = \"disk\"\nlight_angle = 90\n", ":3: light.light_angle: must be a finite number in [1e-100, 90)"},
         {"[camera]\nsize = 0\n", ":2"},
         {"[camera]\nsize = \"16385\"\n", ":2"},
         {"[surface]\nbump_seed = 9007199254740993\n", ":2"},

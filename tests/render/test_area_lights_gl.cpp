@@ -170,6 +170,27 @@ TEST_CASE("measurement::measureGl a tiny disk measures as the directional light,
     CHECK(sun.flags.empty());
 }
 
+TEST_CASE("measurement::measureGl a tiny sphere measures as the point light, in GL and the double reference") {
+    render::Scene point = ggx(0.1, 45);
+    point.light.type = render::LightType::Point;
+    const analysis::Shape a = measureShape(point);
+    // 1e-18: sin^2(alpha) = 1e-38 underflows float (before: aspect 0, peak 0, under_resolved); 1e-30: L = I /
+    // (pi R^2) is past float's range too; 1e-100, the smallest radius accepted, in the reference as well.
+    for (double R : {1e-18, 1e-30, 1e-100}) {
+        CAPTURE(R);
+        render::Scene s = point;
+        s.light.type = render::LightType::Sphere;
+        s.light.radius = R;
+        const analysis::Shape g = measureShape(s);
+        CHECK_NEAR(g.aspect, a.aspect, 1e-4);
+        CHECK(g.peak == doctest::Approx(a.peak).epsilon(1e-4));
+        CHECK(g.flags.empty());
+        const analysis::Shape r = measurement::measureReference(s, {}).shape;
+        CHECK_NEAR(r.aspect, a.aspect, 1e-3);
+        CHECK(r.flags.empty());
+    }
+}
+
 TEST_CASE("measurement::measureGl diagnoses: a rule too sparse for the lobe, and a mirror under the sun") {
     // GGX 2e-3 under the sun at 1 ring: the lobe falls between the 4 points of the rule.
     render::Scene s = withDisk(ggx(2e-3, 45), 0.266, 1);
