@@ -333,56 +333,68 @@ void keepPart(ImageF& img, const PinholeCamera& cam, const PartAim& part) {
 }
 
 /// A region in several parts (the survey found them): each part framed and measured in a view of its own,
-/// at the level of the global peak (frac x the brightest pixel of the part holding the peak, measured
-/// first), and the parts' moments added (they are disjoint). `parts` says each part's own ellipse.
+/// at the level of the global peak (frac x the twin's sup, which the survey climbed to: the brightest pixel of
+/// the part said to hold it can miss it), and the parts' moments added (they are disjoint). `parts` says each
+/// part's own ellipse; the peak, its place and the widths through it come from the view with the brightest pixel.
 Measurement measureParts(const ViewFn& view, const render::Scene& scene, const MeasureSetup& setup,
-                         const LobeSurvey& survey, double firstLevel) {
+                         const LobeSurvey& survey) {
     Measurement m;
     m.framing = "automatic (" + std::to_string(survey.parts.size()) + " parts, a view each)";
     const MirrorChart chart = scene.light.chart();
     analysis::Shape total;
     analysis::AreaMoments moments;
-    double level = 0;
+    // Measured: a ring NDF (10-11 deg) at 30 deg, split in 12 by the survey: the first part's view kept only a
+    // 1 deg^2 sliver of the ring (its other pieces owned elsewhere), brightest pixel 5.0 where the ring reaches
+    // 10.0; at half of 5.0 the region was 262 deg^2 instead of 251.
+    const double level = survey.level;
     std::vector<CountedView> counted;
+    size_t peakPart = 0;
     for (size_t k = 0; k < survey.parts.size(); ++k) {
         const SurveyPart& p = survey.parts[k];
-        PartAim part{&scene, &survey, int(k), k == 0 ? survey.level : level, &counted};
+        PartAim part{&scene, &survey, int(k), level, &counted};
         const double half = 0.5 * std::max(p.u1 - p.u0, p.v1 - p.v0);
         Frame frame{liftAboveHorizon(chart.direction(0.5 * (p.u0 + p.u1), 0.5 * (p.v0 + p.v1))),
                     std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(half, 1.3)))), kMinFovDeg, kMaxFovDeg)};
         aimFrame(view, scene, setup, frame, m, &part);
         const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
-        CountedView seen{cam, {}, 0};
-        const analysis::Shape s =
-            analyse(view, cam, PixelRect{}, setup, m, &part, k == 0 ? firstLevel : level, &seen.L);
+        CountedView seen{cam, {}, level};
+        const analysis::Shape s = analyse(view, cam, PixelRect{}, setup, m, &part, level, &seen.L);
+        const bool measured = !s.has(analysis::Flag::NoHighlight);
         if (k == 0) {
-            level = setup.options.threshold * s.peak;
-            total = s;  // the peak, its place and the widths through it
+            total = s;  // the peak, its place and the widths through it (unless a later view sees a brighter pixel)
+            total.flags.erase(analysis::Flag::NoHighlight);  // said below if no part has a region
+            if (!measured) total.region_pixels = 0, total.minor_pixels = std::numeric_limits<double>::infinity();
             m.fovDeg = frame.fovDeg;
             m.center = frame.center;
-        }
-        analysis::PartShape ps;
-        setEllipse(ps, s.moments);
-        ps.horizon_cut = s.has(analysis::Flag::HorizonCut);
-        ps.holds_peak = k == 0;
-        ps.measured = !s.has(analysis::Flag::NoHighlight);
-        if (ps.measured) moments = analysis::combine(moments, s.moments);
-        seen.level = level;
-        counted.push_back(std::move(seen));
-        total.parts.push_back(ps);
-        if (k > 0) {
-            total.region_pixels += s.region_pixels;
-            total.minor_pixels = std::min(total.minor_pixels, s.minor_pixels);
+        } else {
+            if (s.peak > total.peak) {
+                total.peak = s.peak, total.peak_u_deg = s.peak_u_deg, total.peak_v_deg = s.peak_v_deg;
+                total.fwhm_u_deg = s.fwhm_u_deg, total.fwhm_v_deg = s.fwhm_v_deg;
+                peakPart = k;
+            }
+            if (measured) {
+                total.region_pixels += s.region_pixels;
+                total.minor_pixels = std::min(total.minor_pixels, s.minor_pixels);
+            }
             for (analysis::Flag f : s.flags)
                 if (f != analysis::Flag::NoHighlight) total.flags.insert(f);
             // A view that found nothing of its part: the survey's part is another's (joined to it below the
             // survey's resolution, so measured in that one's view) or lies below the level: nothing is missing.
             // A part that runs out of its view is `clipped` (the flags above), not lost.
         }
+        analysis::PartShape ps;
+        setEllipse(ps, s.moments);
+        ps.horizon_cut = s.has(analysis::Flag::HorizonCut);
+        ps.measured = measured;
+        if (ps.measured) moments = analysis::combine(moments, s.moments);
+        counted.push_back(std::move(seen));
+        total.parts.push_back(ps);
     }
+    total.parts[peakPart].holds_peak = true;
     setEllipse(total, moments);
     total.components = 0;
     for (const auto& ps : total.parts) total.components += ps.measured;
+    if (total.components == 0) total.flags.insert(analysis::Flag::NoHighlight), total.minor_pixels = 0;
     if (total.components < 2) total.parts.clear();
     m.shape = total;
     return m;
@@ -450,7 +462,7 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
                          std::to_string(setup.supersample) + ")");
     const std::optional<LobeSurvey> survey = surveyFor(scene, setup.options.threshold);
     if (survey && !survey->unbounded && survey->parts.size() > 1 && setup.fovDeg <= 0) {
-        Measurement m = measureParts(view, scene, setup, *survey, horizonLevel(survey, setup.options.threshold));
+        Measurement m = measureParts(view, scene, setup, *survey);
         diagnose(scene, setup.options.threshold, path, m.shape);
         flagPeakOnHorizon(scene, survey, m.shape);
         return m;

@@ -236,3 +236,22 @@ TEST_CASE("a ring of a tabulated NDF 30 deg off the mirror direction: the refere
     const auto& f = ref[0]["flags"];
     CHECK(std::find(f.begin(), f.end(), "not_converged") != f.end());
 }
+
+TEST_CASE("a ring of a tabulated NDF that the survey splits in 12 parts: GL measures it at the lobe's own level") {
+    // D = 1 at theta_h 10-11 deg, at 30 deg: one ring, which the survey's grid splits in 12 parts. GL took the
+    // level from the brightest pixel of the first part's view, a 1 deg^2 sliver (5.0; the ring reaches 10.0):
+    // 2 components, area 262 deg^2, aspect 0.8677 against the reference's 1, 250.7 and 0.8660.
+    const std::string file = tmpPath("ring10.csv");
+    std::ofstream(file) << "theta_h_deg, D\n0, 0\n9.9, 0\n10, 1\n11, 1\n11.1, 0\n90, 0\n";
+    const std::string args = "--model tabulated --ndf-table " + file + " --incidence 30";
+    const auto ref = measureJson(flags(args + " --reference"));
+    const auto gl = measureJson(flags(args));
+    std::filesystem::remove(file);
+    REQUIRE(ref.size() == 1);
+    REQUIRE(gl.size() == 1);
+    CHECK(gl[0]["flags"] == ref[0]["flags"]);
+    CHECK(gl[0]["components"] == ref[0]["components"]);
+    CHECK(gl[0]["peak"].get<double>() == doctest::Approx(ref[0]["peak"].get<double>()).epsilon(1e-4));
+    CHECK(gl[0]["aspect"].get<double>() == doctest::Approx(ref[0]["aspect"].get<double>()).epsilon(0.002));
+    CHECK(gl[0]["area_deg2"].get<double>() == doctest::Approx(ref[0]["area_deg2"].get<double>()).epsilon(0.005));
+}
