@@ -29,8 +29,9 @@ int finishStdout(int code) {
 
 int run(int argc, char** argv) {
     CLI::App app{
-        "hilite: the highlight analyzer. Renders a plane under a distant light offscreen (OpenGL via "
-        "OSMesa or EGL) and measures the specular highlight's shape against the angle of incidence.",
+        "hilite: the highlight analyzer. Renders a plane under a light (distant, point, sphere or the sun's disk) "
+        "offscreen (OpenGL via OSMesa or EGL) and measures the specular highlight's shape against the angle of "
+        "incidence.",
         "hilite"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "hilite 0.1.0");
@@ -51,6 +52,10 @@ int run(int argc, char** argv) {
         &addFit);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
+    if (argc <= 1) {  // bare `hilite`: the usage, as --help prints it, where CLI11 said only "A subcommand is required"
+        std::cout << app.help();
+        return finishStdout(0);
+    }
     try {
         std::vector<std::string> args(argv + 1, argv + argc);
         std::reverse(args.begin(), args.end());  // CLI11 takes the vector last argument first

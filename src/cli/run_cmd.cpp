@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
+#include "experiments/experiment.hpp"
 #include "hilite/experiments/run.hpp"
 
 #include <iostream>
@@ -66,7 +67,12 @@ Action addRun(CLI::App& app) {
     app.add_flag("--check", f->check,
                  "check the file, every configuration and the output folder as a run does first, then stop: nothing "
                  "measured or written");
-    app.footer("Example: hilite run eccentricity   (writes results/eccentricity/)");
+    app.footer([] {
+        std::string names;
+        for (const std::string& n : experiments::shippedExperiments()) names += (names.empty() ? "" : ", ") + n;
+        return "Shipped experiments: " + (names.empty() ? std::string("none found") : names) +
+               "\nExample: hilite run eccentricity   (writes results/eccentricity/)";
+    });
     return [f] { return runExperiment(*f); };
 }
 

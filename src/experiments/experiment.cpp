@@ -337,6 +337,22 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
 
 }  // namespace
 
+std::vector<std::string> shippedExperiments() {
+    std::vector<std::string> dirs;
+    for (const SharePlace& place : sharePlaces()) dirs.push_back(place.dir + "/experiments");
+    dirs.push_back("experiments");
+    for (const std::string& dir : dirs) {
+        std::error_code ec;
+        std::vector<std::string> names;
+        for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+            if (e.path().extension() == ".toml" && e.is_regular_file(ec)) names.push_back(e.path().stem().string());
+        if (names.empty()) continue;
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+    return {};
+}
+
 std::string findExperiment(const std::string& name) {
     if (access(name.c_str(), R_OK) == 0) return name;
     std::vector<std::string> dirs;

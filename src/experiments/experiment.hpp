@@ -113,6 +113,8 @@ std::vector<std::string> rowColumns(const Experiment& e);
 
 /// A path, or the name of a file shipped in experiments/ (found beside the executable like the shaders).
 std::string findExperiment(const std::string& nameOrPath);
+/// The names of the experiments shipped in the share folder's experiments/ (as `hilite run NAME` takes them).
+std::vector<std::string> shippedExperiments();
 Experiment loadExperiment(const std::string& path);
 /// The same from text; `name` stands for the file in messages.
 Experiment parseExperiment(const std::string& text, const std::string& name);
