@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""Measures hilite's speed table and writes it into README.md (between the speed:begin and speed:end markers).
+"""Measures hilite's speed table and writes it into docs/speed.md (between the speed:begin and speed:end markers).
 
 Every number in the table is measured by this run: build/bin/hilite_bench (Google Benchmark, medians of
 --repetitions), whole-process wall times of the hilite executable (medians of --repeats), and the plain-numpy
 baseline (bench/numpy_baseline.py) on the same 86-angle sweep in the same run. Run it on an idle machine:
 
-    /usr/bin/python3 bench/speed_table.py --build build            # prints the table and rewrites README.md
+    /usr/bin/python3 bench/speed_table.py --build build            # prints the table and rewrites docs/speed.md
     /usr/bin/python3 bench/speed_table.py --build build --no-write # prints it only
 
 The load average before and after is printed with the table: a loaded machine's numbers are not the tool's.
@@ -98,7 +98,7 @@ def main(argv=None):
     ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder (bin/hilite, bin/hilite_bench)")
     ap.add_argument("--repetitions", type=int, default=5, help="Google Benchmark repetitions (median)")
     ap.add_argument("--repeats", type=int, default=3, help="whole-process runs (median)")
-    ap.add_argument("--no-write", action="store_true", help="print the table, leave README.md as it is")
+    ap.add_argument("--no-write", action="store_true", help="print the table, leave docs/speed.md as it is")
     args = ap.parse_args(argv)
     hilite = os.path.join(args.build, "bin", "hilite")
     bench = os.path.join(args.build, "bin", "hilite_bench")
@@ -107,7 +107,7 @@ def main(argv=None):
             fail(f"--build {args.build}: no {exe} (cmake --build {args.build})")
     if args.repetitions < 1 or args.repeats < 1:
         fail("--repetitions and --repeats: at least 1")
-    readme = os.path.join(ROOT, "README.md")
+    readme = os.path.join(ROOT, "docs", "speed.md")
     text = open(readme, encoding="utf-8").read()
     if not args.no_write and (BEGIN not in text or END not in text):
         fail(f"{readme}: no speed:begin / speed:end markers")

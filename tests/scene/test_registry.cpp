@@ -1,5 +1,5 @@
 // The parameter registry: every entry well-formed, its defaults valid by its own check, the CLI flags and
-// scene-file keys derived from it, and the README's flag table equal to it.
+// scene-file keys derived from it, and docs/parameters.md's flag table equal to it.
 
 #include "hilite/scene/registry.hpp"
 #include "hilite/scene/resolve.hpp"
@@ -93,8 +93,8 @@ TEST_CASE("scene::resolve clamps a roughness below float's reach and the row car
     CHECK(row["roughness_y"].get<double>() == 1e-7);
 }
 
-TEST_CASE("README's flag table is the registry's (hilite explain --part flags)") {
-    std::ifstream in(std::string(HILITE_SOURCE_DIR_STR) + "/README.md");
+TEST_CASE("docs/parameters.md's flag table is the registry's (hilite explain --part flags)") {
+    std::ifstream in(std::string(HILITE_SOURCE_DIR_STR) + "/docs/parameters.md");
     std::stringstream ss;
     ss << in.rdbuf();
     const std::string readme = ss.str();
