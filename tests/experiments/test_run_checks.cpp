@@ -53,6 +53,29 @@ TEST_CASE("run bad experiment files are refused in one line, nothing written") {
     }
 }
 
+TEST_CASE("run [match] with a sweep of the width it sets is refused in one line, nothing written") {
+    // Before: the matched roughness silently replaced the swept one in every row.
+    Dir d;
+    const std::string head =
+        "[[sweep]]\nkey = \"light.incidence\"\nrange = [0, 80, 40]\n[match]\nmaterial.model = "
+        "\"ggx\"\nmaterial.roughness = 0.1\n";
+    std::ofstream(d / "values.toml") << head << "[[sweep]]\nkey = \"material.roughness\"\nvalues = [0.05, 0.2]\n";
+    std::ofstream(d / "cases.toml") << head
+                                    << "[[sweep]]\nkey = \"case\"\ncases = [{ name = \"a\", material = { model = "
+                                       "\"phong\", exponent = 100 } }]\n";
+    for (const char* f : {"values", "cases"}) {
+        CAPTURE(f);
+        const std::string why = refusal(d / (std::string(f) + ".toml"), d / f);
+        CAPTURE(why);
+        CHECK(oneLine(why));
+        CHECK(why.find("[match] sets each model's") != std::string::npos);
+        CHECK_FALSE(fs::exists(d / f));
+    }
+    // Without the sweep of the width, [match] runs (the shipped eccentricity experiment does).
+    std::ofstream(d / "ok.toml") << head;
+    CHECK(refusal(d / "ok.toml", d / "ok").empty());
+}
+
 TEST_CASE("experiments shipped in experiments/ all validate") {
     for (const auto& e : fs::directory_iterator(fs::path(HILITE_SOURCE_DIR_STR) / "experiments")) {
         if (e.path().extension() != ".toml") continue;
