@@ -142,17 +142,27 @@ std::string shapeSection(const Experiment& e, const Rows& rows) {
     return md.str();
 }
 
-void header(ExperimentRunner& runner, size_t rows, double seconds, Report& out) {
+void header(ExperimentRunner& runner, const Rows& rows, double seconds, Report& out) {
     const Experiment& e = runner.experiment();
-    out.md << "# " << e.title << "\n\n" << e.description << "\n\n" << rows << " configurations";
-    if (seconds >= 0) out.md << ", measured in " << std::fixed << std::setprecision(2) << seconds << " s";
+    out.md << "# " << e.title << "\n\n" << e.description << "\n\n" << rows.size() << " configurations";
     out.md << std::defaultfloat << ". Rows: [results.csv](results.csv), [results.jsonl](results.jsonl).\n\n";
-    if (!runner.matched().empty()) {
+    // The matched widths from the rows, not from this process's own matching: a merge, or a resume of a finished
+    // folder, matched nothing itself and left out the models measured elsewhere (Beckmann and Blinn-Phong).
+    std::map<std::string, double> matched;
+    for (const auto& r : rows)
+        if (r.contains("matched_parameter") && r["matched_parameter"].is_number() && r.contains("model") &&
+            r["model"].is_string())
+            matched.emplace(r["model"].get<std::string>(), r["matched_parameter"].get<double>());
+    if (!matched.empty()) {
         out.md << "Lobe widths matched at normal incidence to a semi-major axis of " << std::setprecision(5)
                << runner.targetMajorDeg() << " deg:\n\n| model | parameter |\n|---|---|\n";
-        for (const auto& [k, v] : runner.matched()) out.md << "| " << k << " | " << std::setprecision(6) << v << " |\n";
+        for (const auto& [k, v] : matched) out.md << "| " << k << " | " << std::setprecision(6) << v << " |\n";
         out.md << "\n";
     }
+    // Timing on a line of its own: the only line a merge or a resume writes differently from a single run.
+    if (seconds >= 0)
+        out.md << "Time: this run measured for " << std::fixed << std::setprecision(2) << seconds << " s.\n\n"
+               << std::defaultfloat;
 }
 
 /// [fit]: the ranking, a line per target, and how often each model came first.
@@ -206,7 +216,7 @@ void writeReports(ExperimentRunner& runner, const std::string& dir, const Rows& 
     Report out;
     plots(e, dir, rows, out);
     const bool sheet = contactSheet(runner, dir);
-    header(runner, rows.size(), seconds, out);
+    header(runner, rows, seconds, out);
     for (const auto& p : e.plots) out.md << "![" << p.title << "](" << p.file << ")\n\n";
     strips(e, dir, out);
     if (sheet)
