@@ -4,7 +4,10 @@
 #include "cli/scene_flags.hpp"
 #include "experiments/results.hpp"
 #include "hilite/core/error.hpp"
+#include "hilite/measurement/row.hpp"
 #include "hilite/measurement/session.hpp"
+#include "hilite/scene/registry.hpp"
+#include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +23,7 @@ namespace {
 struct MeasureFlags {
     SceneOptions scene;
     bool json = false;
+    std::string csv;  ///< --csv FILE, or "-" for stdout
 };
 
 void printTableHeader() {
@@ -88,17 +92,30 @@ void printToleranceLine(const nlohmann::json& j) {
 
 int runMeasure(const MeasureFlags& f) {
     scene::Resolved r = scene::resolve(commandValues(f.scene));
+    const bool csvOut = f.csv == "-", csvFile = !f.csv.empty() && !csvOut;
+    if (csvOut && f.json) throw InputError("--csv -: not with --json (both print the rows on stdout)");
+    if (csvFile) io::checkWritable(f.csv, "--csv");  // before anything is measured
+    // The columns of an experiment's results.csv (less `config` and its sweep axes): every parameter, then
+    // every measurement field.
+    std::vector<std::string> columns = scene::columns();
+    for (const auto& c : measurement::measurementColumns()) columns.push_back(c);
+    std::string csv = experiments::csvHeaderLine(columns);
     measurement::Session session;
     if (!r.reference && !r.setup.cpu) session.rendererFor(r);  // a .brdf's probe, before anything is printed
-    if (!f.json) printTableHeader();
+    const bool table = !f.json && !csvOut;
+    if (table) printTableHeader();
+    if (csvOut) std::cout << csv << std::flush;
     for (double angle : r.angles) {
         r.scene.light.incidenceDeg = angle;
         nlohmann::json j = measurement::toJson(session.measureOne(r));
         experiments::nameNonFinite(j);
         if (f.json) std::cout << j.dump() << "\n" << std::flush;
-        else printTableRow(j);
-        if (!f.json && j.contains("tolerance")) printToleranceLine(j);
+        if (csvOut) std::cout << experiments::csvRowLine(columns, j) << std::flush;
+        if (csvFile) csv += experiments::csvRowLine(columns, j);
+        if (table) printTableRow(j);
+        if (table && j.contains("tolerance")) printToleranceLine(j);
     }
+    if (csvFile) io::writeFileAtomic(f.csv, csv);
     return 0;
 }
 
@@ -108,6 +125,11 @@ Action addMeasure(CLI::App& app) {
     auto f = std::make_shared<MeasureFlags>();
     addParamFlags(app, f->scene);
     app.add_flag("--json", f->json, "one JSON object per line instead of a table")->group("Output");
+    app.add_option("--csv", f->csv,
+                   "the rows as CSV, the columns of an experiment's results.csv: to FILE (the table still printed), "
+                   "or - for stdout instead of the table")
+        ->check(nonEmpty())
+        ->group("Output");
     app.footer("Example: hilite measure --model ggx --roughness 0.1 --incidence 0:85:5 --json");
     return [f] { return runMeasure(*f); };
 }

@@ -343,4 +343,9 @@ void ResultsWriter::append(const nlohmann::json& row) {
 
 void ResultsWriter::finish() { m_csv->sync(); }
 
+std::string csvHeaderLine(const std::vector<std::string>& columns) { return header(columns); }
+std::string csvRowLine(const std::vector<std::string>& columns, const nlohmann::json& row) {
+    return csvLine(columns, row);
+}
+
 }  // namespace hilite::experiments

@@ -35,6 +35,10 @@ void nameNonFinite(nlohmann::json& row);
 /// CSV text of one value: numbers as %.10g, arrays joined with ';', text quoted when it holds a comma, quote or
 /// line break (RFC 4180).
 std::string csvField(const nlohmann::json& v);
+/// The header line and one row's line of a CSV with these columns (a column the row lacks is empty), as
+/// results.csv writes them.
+std::string csvHeaderLine(const std::vector<std::string>& columns);
+std::string csvRowLine(const std::vector<std::string>& columns, const nlohmann::json& row);
 
 /// The fingerprint of what configuration `c` of `e` measures (16 hex digits, FNV-1a 64 of a canonical text:
 /// every scene value the configuration sets, data-file paths made absolute with their contents' hash, its case's

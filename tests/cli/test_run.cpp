@@ -233,3 +233,34 @@ TEST_CASE("cli::run --check refuses what a run refuses and writes nothing") {
     CHECK(ok.out.find("eccentricity: 360 configurations, every one valid") != std::string::npos);
     CHECK(!fs::exists(d / "ecc"));
 }
+
+TEST_CASE("cli::measure --csv gives the columns and values of an experiment's results.csv") {
+    Dir d;
+    d.write("two.toml",
+            "[experiment]\nname = \"two\"\n[scene.material]\nmodel = \"ggx\"\nroughness = 0.1\n"
+            "[scene.camera]\nsize = \"96\"\n[[sweep]]\nkey = \"light.incidence\"\nvalues = [30, 60]\n");
+    REQUIRE(sh(std::string(HILITE_EXE) + " run " + (d / "two.toml") + " -o " + (d / "run")) == 0);
+    const std::string args = " measure --model ggx --roughness 0.1 --size 96 --incidence 30,60";
+    REQUIRE(sh("sh -c '" + std::string(HILITE_EXE) + args + " --csv - > " + (d / "stdout.csv") + "'") == 0);
+    REQUIRE(sh(std::string(HILITE_EXE) + args + " --csv " + (d / "file.csv")) == 0);
+    const Csv run = readCsv(d / "run/results.csv"), out = readCsv(d / "stdout.csv"), file = readCsv(d / "file.csv");
+    CHECK(out.header == file.header);
+    CHECK(comparable(out) == comparable(file));
+    REQUIRE(out.rows.size() == 2);
+    REQUIRE(run.rows.size() == 2);
+    // Every column of the run's CSV but `config` is measure's, in the same order, with the same values.
+    std::vector<std::string> runColumns(run.header.begin() + 1, run.header.end());
+    CHECK(runColumns == out.header);
+    const auto a = comparable(out), b = comparable(run);
+    for (size_t i = 0; i < 2; ++i)
+        for (const auto& [k, v] : a[i]) {
+            CAPTURE(k);
+            CHECK(b[i].at(k) == v);
+        }
+    // Refused before anything is measured: --csv - with --json, a folder as the file.
+    using hilite_test::hilite;
+    CHECK(hilite("measure --csv - --json").code == 2);
+    const hilite_test::Result dir = hilite("measure --csv " + std::string(d / ""));
+    CHECK(dir.code == 2);
+    CHECK(dir.out.find("--csv") != std::string::npos);
+}
