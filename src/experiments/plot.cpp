@@ -143,18 +143,41 @@ std::vector<double> theorySamples(const std::vector<double>& data, bool logx) {
 
 bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohmann::json>& rows, std::string& why) {
     // One data block per series, in first-seen order, for gnuplot's "index"; then one per theory curve.
+    // A row with flags is not drawn on its series' line (a zig-zag of horizon strips read as data): it goes to a
+    // block of its own, drawn as open circles titled with the flags it carries.
     std::vector<std::string> order;
     std::map<std::string, std::ostringstream> blocks;
+    std::map<std::string, bool> gapped;  // the series' last line is a gap: one blank line, never two (gnuplot's
+                                         // block separator)
+    std::ostringstream flaggedBlock;
+    std::map<std::string, int> flagCounts;
+    int flagged = 0;
     std::vector<double> xs;
     for (const auto& r : rows) {
         if (!r.contains(spec.x) || !r.contains(spec.y) || r[spec.y].is_null()) continue;
         const std::string key = spec.series.empty() ? spec.y : label(r[spec.series]);
         if (!blocks.count(key)) order.push_back(key);
-        blocks[key] << r[spec.x].dump() << " " << r[spec.y].dump() << "\n";
         if (r[spec.x].is_number()) xs.push_back(r[spec.x].get<double>());
+        const bool hasFlags = r.contains("flags") && r["flags"].is_array() && !r["flags"].empty();
+        if (hasFlags) {
+            ++flagged;
+            for (const auto& f : r["flags"]) ++flagCounts[label(f)];
+            flaggedBlock << r[spec.x].dump() << " " << r[spec.y].dump() << "\n";
+            if (!gapped[key]) blocks[key] << "\n";  // a gap in the series' line
+            gapped[key] = true;
+            continue;
+        }
+        blocks[key] << r[spec.x].dump() << " " << r[spec.y].dump() << "\n";
+        gapped[key] = false;
     }
     std::string data;
-    for (const auto& k : order) data += comment(k) + blocks[k].str() + "\n\n";
+    for (const auto& k : order) data += comment(k) + blocks[k].str() + (gapped[k] ? "\n" : "\n\n");
+    std::string flaggedTitle;
+    if (flagged) {
+        for (const auto& [f, n] : flagCounts) flaggedTitle += (flaggedTitle.empty() ? "" : ", ") + f;
+        flaggedTitle = "flagged, not the whole highlight (" + std::to_string(flagged) + "): " + flaggedTitle;
+        data += comment(flaggedTitle) + flaggedBlock.str() + "\n\n";
+    }
     const std::vector<double> samples = theorySamples(xs, spec.logx);
     // Rows without a numeric x give no samples: no curve (gnuplot would fail on an empty block).
     const size_t curves = samples.empty() ? 0 : spec.theory.size();
@@ -190,8 +213,14 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
            << " using 1:2 with linespoints pt 7 ps 0.5 title " << quoteGnuplot(order[i]);
         first = false;
     }
+    const size_t theory0 = order.size() + (flagged ? 1 : 0);
+    if (flagged) {
+        gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << order.size()
+           << " using 1:2 with points pt 6 ps 1.6 lc rgb 'black' title " << quoteGnuplot(flaggedTitle);
+        first = false;
+    }
     for (size_t i = 0; i < curves; ++i) {
-        gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << order.size() + i
+        gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << theory0 + i
            << " using 1:2 with lines dt 2 lw 2 title " << quoteGnuplot(spec.theory[i].first);
         first = false;
     }

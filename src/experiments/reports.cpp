@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <map>
 #include <sstream>
+#include <utility>
 
 namespace hilite::experiments {
 
@@ -217,7 +218,25 @@ void writeReports(ExperimentRunner& runner, const std::string& dir, const Rows& 
     plots(e, dir, rows, out);
     const bool sheet = contactSheet(runner, dir);
     header(runner, rows, seconds, out);
-    for (const auto& p : e.plots) out.md << "![" << p.title << "](" << p.file << ")\n\n";
+    for (const auto& p : e.plots) {
+        out.md << "![" << p.title << "](" << p.file << ")\n\n";
+        // The rows drawn as open circles (plot.cpp): listed, so that no flagged point reads as data.
+        std::map<std::string, int> counts;
+        int flagged = 0;
+        for (const auto& r : rows)
+            if (r.contains(p.x) && r.contains(p.y) && !r[p.y].is_null() && r.contains("flags") &&
+                r["flags"].is_array() && !r["flags"].empty()) {
+                ++flagged;
+                for (const auto& f : r["flags"]) ++counts[f.is_string() ? f.get<std::string>() : f.dump()];
+            }
+        if (flagged) {
+            out.md << "Open circles: " << flagged << " flagged row" << (flagged > 1 ? "s" : "")
+                   << ", off the lines (the numbers do not describe the whole highlight):";
+            const char* sep = " ";
+            for (const auto& [f, n] : counts) out.md << std::exchange(sep, ", ") << "`" << f << "` " << n;
+            out.md << ".\n\n";
+        }
+    }
     strips(e, dir, out);
     if (sheet)
         out.md << "![contact sheet](" << e.sheetFile << ")\n\nContact sheet: photo views, rows = " << e.sheetRowKey

@@ -3,6 +3,7 @@
 // the CSV fields of a row.
 
 #include "experiments/experiment.hpp"
+#include "experiments/plot.hpp"
 #include "experiments/results.hpp"
 #include "io/image_io.hpp"
 #include "support/in_process.hpp"
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -193,4 +195,37 @@ TEST_CASE("run: a data file that turns bad after validation stops the run, keeps
     CHECK(r.find("; 1 row kept in " + o.out + ": fix it and rerun with --resume)") != std::string::npos);
     CHECK(experiments::readRows(o.out + "/results.jsonl").size() == 1);
     (void)a, (void)b;
+}
+
+TEST_CASE("a plot draws flagged rows as a separate, labelled series off the lines") {
+    // Before, a row flagged horizon_cut sat on its series' line: a zig-zag of horizon strips read as data.
+    hilite_test::TempDir dir("hilite-plot-flags");
+    std::vector<nlohmann::json> rows;
+    for (int i = 0; i < 5; ++i) {
+        nlohmann::json r;
+        r["incidence_deg"] = 20 * i;
+        r["aspect"] = 1.0 - 0.1 * i;
+        r["roughness"] = 0.1;
+        r["flags"] = i == 2 || i == 3 ? nlohmann::json::array({"horizon_cut"}) : nlohmann::json::array();
+        rows.push_back(r);
+    }
+    experiments::PlotSpec spec;
+    spec.file = "aspect.png", spec.title = "t", spec.x = "incidence_deg", spec.y = "aspect", spec.series = "roughness";
+    std::string why;
+    experiments::plot(dir.path.string(), spec, rows,
+                      why);  // the data and the script are written with or without gnuplot
+    std::ifstream datIn(std::string(dir / "aspect.dat")), gpIn(std::string(dir / "aspect.gp"));
+    const std::string dat((std::istreambuf_iterator<char>(datIn)), std::istreambuf_iterator<char>());
+    const std::string gp((std::istreambuf_iterator<char>(gpIn)), std::istreambuf_iterator<char>());
+    INFO(dat);
+    INFO(gp);
+    const auto flaggedAt = dat.find("# flagged, not the whole highlight (2): horizon_cut\n");
+    REQUIRE(flaggedAt != std::string::npos);
+    const std::string series = dat.substr(0, flaggedAt), flagged = dat.substr(flaggedAt);
+    // Two flagged rows in a row leave one blank line (two would end gnuplot's data block), then the line goes on.
+    CHECK(dat.find("0 1.0\n20 0.9\n\n80 0.6\n\n\n# flagged") != std::string::npos);
+    CHECK(series.find("40 0.8") == std::string::npos);  // off the line
+    CHECK(flagged.find("40 0.8\n60 0.7") != std::string::npos);
+    CHECK(gp.find("index 1 using 1:2 with points pt 6") != std::string::npos);
+    CHECK(gp.find("title 'flagged, not the whole highlight (2): horizon_cut'") != std::string::npos);
 }
