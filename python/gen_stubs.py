@@ -190,7 +190,9 @@ class MachineError(RuntimeError): ...
             ("eval", "wi: npt.ArrayLike, wo: npt.ArrayLike, *,", "npt.NDArray[np.float64]"),
             ("bounces", f"theta_deg: {arr}, *, paths: int = 100000, batches: int = 16, seed: int = 1,\n"
                         "    texels: int = 1024, bumps_per_tile: int = 64, surface: str = 'hermite',\n"
-                        "    bump_seed: int | None = None,", "dict[str, npt.NDArray[Any]]")):
+                        "    bump_seed: int | None = None,", "dict[str, npt.NDArray[Any]]"),
+            ("slice", f"theta_deg: {arr}, *, curves: Sequence[Any] | None = None, step: float = 0.5,",
+             "dict[str, npt.NDArray[Any]]")):
         kws = keywords(name == "normalization", material)
         b += f"def {name}(\n    {head}\n" + kws + f") -> {ret}:\n" + doc(getattr(_brdf, name)) + "    ...\n\n"
     with open(f"{out}/__init__.pyi", "w") as f:

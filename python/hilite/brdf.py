@@ -12,6 +12,7 @@ diffuse, ...), checked as on the CLI; angles are degrees; directions are unit ve
 """
 
 import numbers
+import os
 
 import numpy as np
 
@@ -85,6 +86,36 @@ def eval(wi, wo, **params):  # noqa: A001 (the issue's name: hilite.brdf.eval)
     a2 = np.ascontiguousarray(np.broadcast_to(a, shape).reshape(-1, 3))
     b2 = np.ascontiguousarray(np.broadcast_to(b, shape).reshape(-1, 3))
     return _hilite.eval(items_of(params, _MATERIAL), a2, b2).reshape(shape)
+
+
+def slice(theta_deg, *, curves=None, step=0.5, **params):  # noqa: A001 (the CLI's name: hilite brdf slice)
+    """f and f cos(theta_o) in the plane of incidence and across it (`hilite brdf slice`'s slice.csv): the
+    keywords' BRDF, and each of `curves` (a dict of material keywords over them, or a (label, dict) pair)
+    overlaid, at each incidence, every `step` degrees. Returns columns: curve, incidence_deg, plane ("in": angle
+    = signed theta_o, + on the mirror side; "across": the angle from the mirror direction), angle_deg,
+    theta_o_deg, wo_x, wo_y, wo_z, f_r, f_g, f_b, f (luminance), f_cos."""
+    a = _angles(theta_deg)
+    if isinstance(step, bool) or not isinstance(step, (numbers.Real, np.floating)):
+        raise TypeError(f"step: expected a number, got {type(step).__name__}")
+    base = {k: v for k, v in params.items() if v is not None}
+    analytic = {k: v for k, v in base.items() if k != "measured"}
+    allowed = _MATERIAL | {"azimuth"}
+    todo = []
+    # As the CLI: the keywords' model (unless only `measured` names a material), then the measured table.
+    if "measured" not in base or set(analytic) - {"azimuth"}:
+        label = str(analytic.get("model", "ggx")) + "".join(
+            f" {k}={analytic[k]}" for k in ("roughness", "exponent", "roughness_y") if k in analytic)
+        todo.append((label, items_of(analytic, allowed) + _incidence_items(a)))
+    if "measured" in base:
+        table = {k: v for k, v in base.items() if k in ("measured", "azimuth")}
+        todo.append((f"measured {os.path.basename(str(base['measured']))}", items_of(table, allowed) +
+                     _incidence_items(a)))
+    for c in curves or []:
+        name, over = c if isinstance(c, tuple) else (" ".join(f"{k}={v}" for k, v in c.items()), c)
+        merged = dict(analytic)
+        merged.update(over)
+        todo.append((str(name), items_of(merged, allowed) + _incidence_items(a)))
+    return columns(_hilite.slice(todo, float(step)))
 
 
 _KEYWORDS = signature_doc(_MATERIAL)

@@ -17,6 +17,7 @@
 #include "hilite/experiments/bounces.hpp"
 #include "hilite/experiments/fit.hpp"
 #include "hilite/experiments/run.hpp"
+#include "hilite/experiments/slice.hpp"
 #include "hilite/hilite.hpp"
 #include "io/image_io.hpp"
 #include "measurement/shader_probe.hpp"
@@ -215,6 +216,23 @@ py::list bouncesOf(const Items& items, long paths, int batches, uint64_t seed, i
     return out;
 }
 
+/// hilite.brdf.slice: each (label, items) a curve, the incidences those of the first curve's items.
+py::list sliceOf(const std::vector<std::pair<std::string, Items>>& curves, double step) {
+    std::vector<std::string> rows;
+    {
+        py::gil_scoped_release release;
+        std::vector<experiments::SliceCurve> cs;
+        for (const auto& [label, items] : curves)
+            cs.push_back({label, scene::resolve(python::values(items), scene::Purpose::Brdf)});
+        if (cs.empty()) throw InputError("slice: give at least one BRDF");
+        for (const auto& p : experiments::brdfSlices(cs, cs.front().scene.angles, step))
+            rows.push_back(experiments::toJson(p).dump());
+    }
+    py::list out;
+    for (const auto& j : rows) out.append(python::toPython(nlohmann::json::parse(j)));
+    return out;
+}
+
 py::array_t<double> bihemispherical(const Items& items) {
     std::vector<dvec3> v;
     {
@@ -378,6 +396,7 @@ PYBIND11_MODULE(_hilite, m) {
     m.def("bounces", &bouncesOf, py::arg("items"), py::arg("paths"), py::arg("batches"), py::arg("seed"),
           py::arg("texels"), py::arg("bumps_per_tile"), py::arg("surface"));
     m.def("normalization", &normalizationOf, py::arg("items"));
+    m.def("slice", &sliceOf, py::arg("curves"), py::arg("step"));
     m.def("eval", &evalBrdf, py::arg("items"), py::arg("wi"), py::arg("wo"));
     m.def("resolve", &resolveColumns, py::arg("items"), py::arg("purpose"));
     m.def("scene_toml", [](const Items& items) { return scene::sceneToml(python::values(items)); });

@@ -17,7 +17,7 @@ def test_stubs_cover_the_registry(hilite):
     names = {n.name for n in brdf.body if isinstance(n, ast.FunctionDef)}
     public = {n for n in dir(hilite.brdf) if not n.startswith("_") and callable(getattr(hilite.brdf, n))
               and getattr(getattr(hilite.brdf, n), "__module__", "") == "hilite.brdf"}
-    assert public == {"fresnel", "albedo", "bihemispherical_albedo", "normalization", "eval", "bounces"}
+    assert public == {"fresnel", "albedo", "bihemispherical_albedo", "normalization", "eval", "bounces", "slice"}
     assert names == public
     assert os.path.exists(os.path.join(here, "py.typed"))
 

@@ -290,6 +290,7 @@ Action addBrdf(CLI::App& app) {
         "direction below the horizon hold -1 (no data).");
 
     const auto [bounces, runBounces] = addBrdfBounces(app);
+    const auto [slice, runSliceCmd] = addBrdfSlice(app);
 
     app.footer(
         "Examples: hilite brdf fresnel --material copper --incidence 0:90:5\n"
@@ -297,9 +298,11 @@ Action addBrdf(CLI::App& app) {
         "          hilite brdf normalization --model beckmann --roughness 0.02,0.1,1\n"
         "          hilite brdf strip --material gold -o gold.png\n"
         "          hilite brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick -o ggx.binary\n"
-        "          hilite brdf bounces --roughness 0.6 --material gold --incidence 0,60");
-    return [=, bounces = bounces, runBounces = runBounces] {
+        "          hilite brdf bounces --roughness 0.6 --material gold --incidence 0,60\n"
+        "          hilite brdf slice --model ggx --roughness 0.1 --incidence 60 -o slices");
+    return [=, bounces = bounces, runBounces = runBounces, slice = slice, runSliceCmd = runSliceCmd] {
         if (bounces->parsed()) return runBounces();
+        if (slice->parsed()) return runSliceCmd();
         if (albedo->parsed()) return runAlbedo(*fa);
         if (fresnel->parsed()) return runFresnel(*ff);
         if (normalization->parsed()) return runNormalization(*fn);

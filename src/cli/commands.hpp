@@ -26,5 +26,6 @@ Action addExplain(CLI::App& app);
 Action addFit(CLI::App& app);  ///< cli/fit_cmd.cpp
 /// `brdf bounces` (cli/bounces_cmd.cpp): the subcommand, added to `brdf`, and its action.
 std::pair<CLI::App*, Action> addBrdfBounces(CLI::App& brdf);
+std::pair<CLI::App*, Action> addBrdfSlice(CLI::App& brdf);
 
 }  // namespace hilite::cli

@@ -206,6 +206,9 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     const std::string key = std::find(keys.begin(), keys.end(), spec.key) != keys.end() ? spec.key : "bottom left";
     gp << (key == "off" ? std::string("set key off\n") : "set key " + key + " box opaque\n") << "set grid\n"
        << (spec.logx ? "set logscale x\n" : "") << (spec.logy ? "set logscale y\n" : "");
+    if (spec.polar)
+        gp << "set polar\nset angles degrees\nset theta top clockwise\nset size square\nunset border\n"
+              "unset xtics\nunset ytics\nset grid polar 15\nset rrange [0:*]\nset ttics 0,15\n";
     gp << "plot ";
     bool first = true;
     for (size_t i = 0; i < order.size(); ++i) {

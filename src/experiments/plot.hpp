@@ -20,6 +20,7 @@ struct PlotSpec {
     std::string xlabel, ylabel;
     std::string key = "bottom left";  ///< legend position, one of plotKeys()
     bool logx = false, logy = false;  ///< logarithmic axes
+    bool polar = false;               ///< x an angle in degrees from the normal (up), y the radius
 };
 
 /// Writes dir/<spec.file> from the rows (skipping rows whose y is null). Returns false (and says why in
