@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -113,6 +114,41 @@ namespace {
 
 std::string label(const nlohmann::json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
+/// An axis label for a row field: words and a unit, not the column's name (a plot read "incidence_deg").
+std::string fieldLabel(const std::string& field) {
+    static const std::map<std::string, std::string> known = {
+        {"incidence_deg", "angle of incidence θi (deg)"},
+        {"aspect", "aspect (minor / major)"},
+        {"eccentricity", "eccentricity"},
+        {"major_deg", "semi-major axis (deg)"},
+        {"minor_deg", "semi-minor axis (deg)"},
+        {"orientation_deg", "orientation of the major axis (deg)"},
+        {"centroid_u_deg", "centroid u, + towards the normal (deg)"},
+        {"centroid_v_deg", "centroid v (deg)"},
+        {"fwhm_u_deg", "width along u through the peak (deg)"},
+        {"fwhm_v_deg", "width along v through the peak (deg)"},
+        {"roughness", "roughness (α for GGX, m for Beckmann)"},
+        {"exponent", "exponent n"},
+        {"peak", "peak radiance"},
+        {"area_deg2", "area (deg²)"},
+        {"cos_incidence", "cos θi"}};
+    if (const auto it = known.find(field); it != known.end()) return it->second;
+    std::string out = field;
+    for (const char* unit : {"_deg2", "_deg", "_ms"})
+        if (out.size() > std::strlen(unit) &&
+            out.compare(out.size() - std::strlen(unit), std::strlen(unit), unit) == 0) {
+            out = out.substr(0, out.size() - std::strlen(unit)) + " (" + std::string(unit + 1) + ")";
+            break;
+        }
+    std::replace(out.begin(), out.end(), '_', ' ');
+    return out;
+}
+
+/// A series' title: its value, named when it is a number ("roughness = 0.02", not a bare "0.02").
+std::string seriesTitle(const std::string& field, const nlohmann::json& v) {
+    return v.is_number() ? field + " = " + v.dump() : label(v);
+}
+
 /// A data file's comment line: one line whatever the text holds.
 std::string comment(const std::string& s) {
     std::string c = "# ";
@@ -155,7 +191,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     std::vector<double> xs;
     for (const auto& r : rows) {
         if (!r.contains(spec.x) || !r.contains(spec.y) || r[spec.y].is_null()) continue;
-        const std::string key = spec.series.empty() ? spec.y : label(r[spec.series]);
+        const std::string key = spec.series.empty() ? spec.y : seriesTitle(spec.series, r[spec.series]);
         if (!blocks.count(key)) order.push_back(key);
         if (r[spec.x].is_number()) xs.push_back(r[spec.x].get<double>());
         const bool hasFlags = r.contains("flags") && r["flags"].is_array() && !r["flags"].empty();
@@ -175,7 +211,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     std::string flaggedTitle;
     if (flagged) {
         for (const auto& [f, n] : flagCounts) flaggedTitle += (flaggedTitle.empty() ? "" : ", ") + f;
-        flaggedTitle = "flagged, not the whole highlight (" + std::to_string(flagged) + "): " + flaggedTitle;
+        flaggedTitle = "flagged (" + std::to_string(flagged) + "): " + flaggedTitle;
         data += comment(flaggedTitle) + flaggedBlock.str() + "\n\n";
     }
     const std::vector<double> samples = theorySamples(xs, spec.logx);
@@ -199,12 +235,16 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     gp << "set terminal pngcairo size 900,600 noenhanced font 'DejaVu Sans,11'\n"
        << "set output " << quoteGnuplot(dir + "/" + spec.file + ".tmp") << "\n"
        << "set title " << quoteGnuplot(spec.title) << "\n"
-       << "set xlabel " << quoteGnuplot(spec.xlabel.empty() ? spec.x : spec.xlabel) << "\n"
-       << "set ylabel " << quoteGnuplot(spec.ylabel.empty() ? spec.y : spec.ylabel) << "\n";
+       << "set xlabel " << quoteGnuplot(spec.xlabel.empty() ? fieldLabel(spec.x) : spec.xlabel) << "\n"
+       << "set ylabel " << quoteGnuplot(spec.ylabel.empty() ? fieldLabel(spec.y) : spec.ylabel) << "\n";
     // The key is one of a fixed set (checked when the file is read); anything else keeps the default.
     const auto& keys = plotKeys();
-    const std::string key = std::find(keys.begin(), keys.end(), spec.key) != keys.end() ? spec.key : "bottom left";
-    gp << (key == "off" ? std::string("set key off\n") : "set key " + key + " box opaque\n") << "set grid\n"
+    const std::string key = std::find(keys.begin(), keys.end(), spec.key) != keys.end() ? spec.key : "below";
+    // Below the plot: no box, which gnuplot draws over the x label there.
+    gp << (key == "off"     ? std::string("set key off\n")
+           : key == "below" ? std::string("set key below\n")
+                            : "set key " + key + " box opaque\n")
+       << "set grid\n"
        << (spec.logx ? "set logscale x\n" : "") << (spec.logy ? "set logscale y\n" : "");
     if (spec.polar)
         gp << "set polar\nset angles degrees\nset theta top clockwise\nset size square\nunset border\n"
@@ -224,7 +264,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     }
     for (size_t i = 0; i < curves; ++i) {
         gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << theory0 + i
-           << " using 1:2 with lines dt 2 lw 2 title " << quoteGnuplot(spec.theory[i].first);
+           << " using 1:2 with lines dt 2 lw 2.5 lc rgb '#303030' title " << quoteGnuplot(spec.theory[i].first);
         first = false;
     }
     if (first) gp << "NaN notitle";  // no rows with the fields: an empty frame, not a gnuplot syntax error

@@ -18,7 +18,7 @@ struct PlotSpec {
     std::string series;  ///< row field whose values make separate lines ("" = one line)
     std::vector<std::pair<std::string, std::string>> theory;  ///< (title, muparser expression of x)
     std::string xlabel, ylabel;
-    std::string key = "bottom left";  ///< legend position, one of plotKeys()
+    std::string key = "below";        ///< legend position, one of plotKeys(); by default below the plot, off the data
     bool logx = false, logy = false;  ///< logarithmic axes
     bool polar = false;               ///< x an angle in degrees from the normal (up), y the radius
 };

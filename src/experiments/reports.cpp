@@ -49,10 +49,23 @@ bool contactSheet(ExperimentRunner& runner, const std::string& dir) {
     int left = io::textWidth(rowKey, scale);
     for (const auto& r : e.sheetRows) left = std::max(left, io::textWidth(r, scale));
     left += 2 * gap;
-    const int top = 2 * io::textHeight(scale) + gap;
+    // A title band: the experiment's title, the parameters every tile shares, and the exposure rule (a tile
+    // exposed to its own peak says nothing of brightness across tiles).
+    const int small = 2, band = 2 * io::textHeight(small) + 2 * gap;
+    const int top = band + 2 * io::textHeight(scale) + gap;
     ImageF sheet(left + cols * tw + (cols - 1) * gap, top + nrows * th + (nrows - 1) * gap, 4);
-    io::drawText(sheet, left, 0, colKey + " ->", scale);
-    io::drawText(sheet, 2, 0, rowKey, scale);
+    std::string fixed;
+    for (const auto& [name, value] : e.base.given()) fixed += (fixed.empty() ? "" : ", ") + name + " " + value.text;
+    std::string line2 = (fixed.empty() ? std::string("defaults") : fixed) + "; each tile exposed to its own peak";
+    while (line2.size() > 4 && io::textWidth(line2, small) > sheet.width - 4)
+        line2 = line2.substr(0, line2.size() - 4) + "...";
+    std::string line1 = e.title;
+    while (line1.size() > 4 && io::textWidth(line1, small) > sheet.width - 4)
+        line1 = line1.substr(0, line1.size() - 4) + "...";
+    io::drawText(sheet, 2, 0, line1, small);
+    io::drawText(sheet, 2, io::textHeight(small) + gap / 2, line2, small, 0.7f);
+    io::drawText(sheet, left, band, colKey + " ->", scale);
+    io::drawText(sheet, 2, band, rowKey, scale);
     for (int ri = 0; ri < nrows; ++ri)
         for (int ci = 0; ci < cols; ++ci) {
             scene::Values values = e.base;
@@ -71,7 +84,7 @@ bool contactSheet(ExperimentRunner& runner, const std::string& dir) {
                     for (int c = 0; c < 4; ++c)
                         sheet.pixel(x0 + x, sheet.height - yTop - th + y)[c] =
                             float(tile.pixel(x, y)[c] * (c < 3 ? s : 1.0));
-            if (ri == 0) io::drawText(sheet, x0, io::textHeight(scale), e.sheetColumns[size_t(ci)], scale);
+            if (ri == 0) io::drawText(sheet, x0, band + io::textHeight(scale), e.sheetColumns[size_t(ci)], scale);
             if (ci == 0)
                 io::drawText(sheet, 2, yTop + th / 2 - io::textHeight(scale) / 2, e.sheetRows[size_t(ri)], scale);
         }

@@ -219,7 +219,7 @@ TEST_CASE("a plot draws flagged rows as a separate, labelled series off the line
     const std::string gp((std::istreambuf_iterator<char>(gpIn)), std::istreambuf_iterator<char>());
     INFO(dat);
     INFO(gp);
-    const auto flaggedAt = dat.find("# flagged, not the whole highlight (2): horizon_cut\n");
+    const auto flaggedAt = dat.find("# flagged (2): horizon_cut\n");
     REQUIRE(flaggedAt != std::string::npos);
     const std::string series = dat.substr(0, flaggedAt), flagged = dat.substr(flaggedAt);
     // Two flagged rows in a row leave one blank line (two would end gnuplot's data block), then the line goes on.
@@ -227,5 +227,5 @@ TEST_CASE("a plot draws flagged rows as a separate, labelled series off the line
     CHECK(series.find("40 0.8") == std::string::npos);  // off the line
     CHECK(flagged.find("40 0.8\n60 0.7") != std::string::npos);
     CHECK(gp.find("index 1 using 1:2 with points pt 6") != std::string::npos);
-    CHECK(gp.find("title 'flagged, not the whole highlight (2): horizon_cut'") != std::string::npos);
+    CHECK(gp.find("title 'flagged (2): horizon_cut'") != std::string::npos);
 }
