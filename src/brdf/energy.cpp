@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -20,6 +21,9 @@ double thetaDegOf(double mu) { return rad2deg(std::acos(std::clamp(mu, 1e-6, 1.0
 /// The table interpolated at mu, linear in x = sqrt(mu) (N - 1); the twin of the GLSL lookups.
 template <class T>
 T lookup(const std::vector<T>& table, double mu) {
+    // A NaN mu (a NaN direction given to brdf::evaluate) gives NaN, not an index: casting NaN to size_t is
+    // undefined (fuzz_entry_points found it: UBSan "nan is outside the range of representable values").
+    if (std::isnan(mu)) return table[0] * std::numeric_limits<double>::quiet_NaN();
     const double x = std::sqrt(std::clamp(mu, 0.0, 1.0)) * double(table.size() - 1);
     const size_t i = std::min(size_t(x), table.size() - 2);
     const double t = x - double(i);

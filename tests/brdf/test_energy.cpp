@@ -8,6 +8,7 @@
 #include "brdf/energy.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/spectral.hpp"
+#include "hilite/brdf/evaluate.hpp"
 
 #include <doctest/doctest.h>
 
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 using namespace hilite;
 using brdf::Diffuse;
@@ -186,4 +188,17 @@ TEST_CASE("brdf::energyE the table's lookup: entries exact, linear in sqrt(mu) b
     // E_avg is the interpolant's cosine average; single scattering at alpha 0.5 keeps most but not all.
     CHECK(t.Eavg > 0.7);
     CHECK(t.Eavg < 0.95);
+}
+
+TEST_CASE("brdf::evaluate with kulla-conty and a NaN direction gives NaN, not an index from NaN") {
+    // fuzz_entry_points found it (UBSan: "nan is outside the range of representable values of type 'unsigned
+    // long'" in the table lookup): the library takes any direction a caller passes.
+    brdf::Params p = smith(Model::GGX, 0.3);
+    p.multiscatter = Multiscatter::KullaConty;
+    p = withTables(p);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const dvec3 f = brdf::evaluate(p, dvec3(0, 0, 1), dvec3(nan, 0, nan));
+    CHECK(std::isnan(f.x));
+    CHECK(std::isnan(brdf::energyE(nan, *p.energy)));
+    CHECK(std::isfinite(brdf::energyE(0.5, *p.energy)));
 }
