@@ -85,6 +85,12 @@ def main():
     env["PYTHONPATH"] = pydir
     env.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
     ran, fails = [], []
+    # Every relative link of the pages leads to a file of the tree (a page moved, a picture renamed).
+    for doc in docs:
+        for m in re.finditer(r'\]\(([^)#\s]+)(#[^)]*)?\)', open(doc, encoding="utf-8").read()):
+            target = m.group(1)
+            if not re.match(r'^[a-z]+:', target) and not os.path.exists(os.path.join(os.path.dirname(doc), target)):
+                fails.append(f"{os.path.relpath(doc, args.source)}: a link to {target}, which does not exist")
     for doc in docs:
         name = os.path.relpath(doc, args.source)
         todo = [b for b in blocks(doc) if b[1] == "console" or b[3] or
@@ -122,7 +128,7 @@ def main():
                     ran.append(f"{where} python{'' if ok else ' FAILED'}")
         finally:
             shutil.rmtree(cwd, ignore_errors=True)
-    print("ran the examples of the docs:")
+    print(f"checked the relative links of {len(docs)} pages; ran the examples of the docs:")
     for r in ran:
         print("  " + r)
     for f in fails:
