@@ -127,7 +127,8 @@ std::pair<CLI::App*, Action> addBrdfBounces(CLI::App& app) {
     sub->add_flag("--json", f->json, "one JSON object per incidence instead of the table");
     sub->footer(
         "F = 1 energies per order, the colour (CIELAB C*, D65) of each order's light with the scene's Fresnel, "
-        "and the albedo against --multiscatter kulla-conty. Method and measured numbers: docs/bounces.md.");
+        "and the albedo against --multiscatter kulla-conty. Method and measured numbers: docs/bounces.md.\n"
+        "Example: hilite brdf bounces --roughness 0.6 --material gold --incidence 0,60");
     return {sub, [f] { return runBounces(*f); }};
 }
 

@@ -257,13 +257,16 @@ Action addBrdf(CLI::App& app) {
         return brdfParam(p) || p.name == "incidence" || p.name == "azimuth";
     });
     albedo->add_flag("--json", fa->json, kJsonHelp);
-    albedo->footer("A light at 90 degrees delivers nothing: albedo 0 there by the horizon convention.");
+    albedo->footer(
+        "A light at 90 degrees delivers nothing: albedo 0 there by the horizon convention.\n"
+        "Example: hilite brdf albedo --model ggx --roughness 0.3 --geometry smith --json");
 
     CLI::App* fresnel = app.add_subcommand("fresnel", "Fresnel reflectance F vs theta_i, RGB or spectral");
     auto ff = subcommandFlags(*fresnel, "0:90:5", "",
                               [](const scene::Param& p) { return fresnelParam(p) || p.name == "incidence"; });
     fresnel->add_flag("--spectral", ff->spectral, kSpectralHelp);
     fresnel->add_flag("--json", ff->json, kJsonHelp);
+    fresnel->footer("Example: hilite brdf fresnel --material copper --incidence 0:90:5");
 
     CLI::App* normalization = app.add_subcommand("normalization", "int D(h) (n.h) dw_h of an NDF (1 if normalized)");
     auto fn = subcommandFlags(*normalization, "0", "", [](const scene::Param& p) {
@@ -274,12 +277,14 @@ Action addBrdf(CLI::App& app) {
     normalization->add_option("--exponent", fn->exponent, "exponents (blinn): list or START:STOP:STEP, in [0, 1e8]")
         ->capture_default_str();
     normalization->add_flag("--json", fn->json, kJsonHelp);
+    normalization->footer("Example: hilite brdf normalization --model beckmann --roughness 0.02,0.1,1");
 
     CLI::App* strip = app.add_subcommand("strip", "PNG of a material's Fresnel colour, theta 0 (left) to 90 (right)");
     auto fs = subcommandFlags(*strip, "0", "512x64",
                               [](const scene::Param& p) { return fresnelParam(p) || p.name == "size"; });
     strip->add_flag("--spectral", fs->spectral, kSpectralHelp);
     strip->add_option("-o,--output", fs->png, "PNG output (sRGB-encoded linear F)");
+    strip->footer("Example: hilite brdf strip --material gold -o gold.png");
 
     CLI::App* tabulate =
         app.add_subcommand("tabulate", "a built-in isotropic model as a MERL .binary table (CPU, double)");
@@ -287,7 +292,8 @@ Action addBrdf(CLI::App& app) {
     tabulate->add_option("-o,--output", ft->png, "MERL .binary output (34,992,012 bytes)");
     tabulate->footer(
         "brdf::evaluate (lobe with F and G, diffuse) at every bin centre; bins whose centre puts a "
-        "direction below the horizon hold -1 (no data).");
+        "direction below the horizon hold -1 (no data).\n"
+        "Example: hilite brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick -o ggx.binary");
 
     const auto [bounces, runBounces] = addBrdfBounces(app);
     const auto [slice, runSliceCmd] = addBrdfSlice(app);

@@ -264,3 +264,15 @@ TEST_CASE("cli::measure --csv gives the columns and values of an experiment's re
     CHECK(dir.code == 2);
     CHECK(dir.out.find("--csv") != std::string::npos);
 }
+
+TEST_CASE("cli::every subcommand's --help shows an example") {
+    using hilite_test::hilite;
+    for (const char* sub :
+         {"render", "measure", "explain", "fit", "run", "merge", "brdf", "brdf albedo", "brdf fresnel",
+          "brdf normalization", "brdf strip", "brdf tabulate", "brdf bounces", "brdf slice"}) {
+        CAPTURE(sub);
+        const hilite_test::Result r = hilite(std::string(sub) + " --help");
+        CHECK(r.code == 0);
+        CHECK(r.out.find("Example") != std::string::npos);
+    }
+}
