@@ -120,21 +120,34 @@ def plot(rows, path):
     plt.close(fig)
 
 
+def folder_problem(path):
+    """Why the folder of `path` cannot hold it ("" when it exists or can be made): a file where a folder of
+    the path should be."""
+    folder = os.path.dirname(os.path.abspath(path))
+    while folder and not os.path.exists(folder):
+        folder = os.path.dirname(folder)
+    return "" if os.path.isdir(folder) else f"{folder} is a file, not a folder"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("-o", "--output", default="aspect.png", help="the plot (PNG; default aspect.png)")
     ap.add_argument("--csv", help="also write model, incidence_deg, aspect, matched_parameter here")
     args = ap.parse_args(argv)
+    folders = []
     for name, path in (("-o", args.output), ("--csv", args.csv)):  # refuse before measuring or writing
         if path is None:
             continue
         if not path:
             ap.error(f"{name}: an empty file name")
-        folder = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(folder):
-            ap.error(f"{name} {path}: no folder {folder}")
+        why = folder_problem(path)
+        if why:
+            ap.error(f"{name} {path}: {why}")
+        folders.append(os.path.dirname(os.path.abspath(path)))
     if not args.output.lower().endswith(".png"):
         ap.error(f"-o {args.output}: the plot is a PNG (a name ending in .png)")
+    for folder in folders:  # made once everything is checked, as hilite makes an output folder
+        os.makedirs(folder, exist_ok=True)
     rows = aspect_rows()
     for model in MODELS:
         r = [x for x in rows if x["model"] == model]

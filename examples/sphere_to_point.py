@@ -7,6 +7,7 @@ between a sphere light of radius R and the point light of the same intensity and
 
 tests/render/test_area_lights_gl.cpp asserts the same order (1.9 to 2.1) from the same renders in C++.
 """
+import os
 import sys
 
 import numpy as np
@@ -49,6 +50,7 @@ def main(out):
     plt.grid(True, which="both", alpha=0.3)
     plt.legend()
     plt.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)  # the output's folder, made if missing
     plt.savefig(out, dpi=100)
     plt.close()
     return order

@@ -117,11 +117,17 @@ def test_csv_and_plot_are_written_headless(tmp_path, monkeypatch):
 
 
 def test_bad_output_refused_before_anything_is_measured(tmp_path, capsys):
+    (tmp_path / "file").write_text("x")
     with pytest.raises(SystemExit) as e:
-        example.main(["-o", str(tmp_path / "missing" / "a.png")])
+        example.main(["-o", str(tmp_path / "file" / "sub" / "a.png")])  # a file where a folder should be
     assert e.value.code == 2
-    assert "no folder" in capsys.readouterr().err
+    assert "is a file, not a folder" in capsys.readouterr().err
     with pytest.raises(SystemExit) as e:
-        example.main(["-o", str(tmp_path / "a.svg")])
+        example.main(["-o", str(tmp_path / "new" / "a.svg")])
     assert e.value.code == 2
-    assert list(tmp_path.iterdir()) == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]  # nothing made for a refused run
+
+
+def test_output_folders_are_made(tmp_path):
+    # The example makes its output's folders, as hilite does (before: "no folder", and the user made it).
+    assert example.folder_problem(str(tmp_path / "new" / "deep" / "a.png")) == ""
