@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -146,11 +147,19 @@ int runFresnel(const BrdfFlags& f) {
     const brdf::Params p = fresnelParams(f);
     const auto thetas = resolveBrdf(f).angles;
     if (!f.json) std::cout << "# " << describeFresnel(p) << "\n#    theta_deg           r           g           b\n";
+    double most = 0;
     printRgbRows(f, thetas, "rgb", [&](double t) {
         double c, s;
         cosSinDeg(t, c, s);
-        return brdf::fresnel(p, c);
+        const dvec3 F = brdf::fresnel(p, c);
+        most = std::max({most, F.x, F.y, F.z});
+        return F;
     });
+    // A reflectance above 1 reads as a bug: it is the colour, not the energy (gold at 0 deg: r 1.022).
+    if (!f.json && most > 1.0 + 1e-12)
+        std::cout
+            << "# a component above 1: the measured spectrum's colour lies outside the sRGB gamut, so a linear sRGB\n"
+               "# component exceeds 1 while every wavelength's reflectance, and the luminance Y, stay at most 1\n";
     return 0;
 }
 
