@@ -253,9 +253,10 @@ TEST_CASE("cli::measure --csv gives the columns and values of an experiment's re
     CHECK(runColumns == out.header);
     const auto a = comparable(out), b = comparable(run);
     for (size_t i = 0; i < 2; ++i)
-        for (const auto& [k, v] : a[i]) {
-            CAPTURE(k);
-            CHECK(b[i].at(k) == v);
+        for (const auto& kv : a[i]) {
+            const std::string column = kv.first;  // a structured binding cannot be captured in C++17 (clang)
+            CAPTURE(column);
+            CHECK(b[i].at(column) == kv.second);
         }
     // Refused before anything is measured: --csv - with --json, a folder as the file.
     using hilite_test::hilite;
