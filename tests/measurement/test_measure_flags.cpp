@@ -16,6 +16,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 using namespace hilite;
 using namespace hilite::testing;
@@ -209,17 +211,24 @@ TEST_CASE("a .brdf with an infinite peak is float_overflow, not aspect 1 and maj
     for (const char* k : {"aspect", "major_deg", "minor_deg"}) CHECK(rows[0][k].is_null());
 }
 
-TEST_CASE("a thin ring of a tabulated NDF off the mirror direction: the reference finds it as GL does") {
-    // D > 0 only at theta_h 0.5-0.7 deg: dark at every survey grid sample and at the mirror direction (before:
-    // the reference said no_highlight, peak 0, while GL measured major 1.698 deg).
-    const std::string file = tmpPath("ring.csv");
-    std::ofstream(file) << "theta_h_deg, D\n0, 0\n0.5, 0\n0.6, 10\n0.7, 0\n90, 0\n";
+/// A tabulated NDF of `rows` (theta_h_deg, D) at 30 deg, measured by the reference and by GL: one row each.
+std::pair<std::vector<nlohmann::json>, std::vector<nlohmann::json>> ringAt30(const std::string& name,
+                                                                             const std::string& rows) {
+    const std::string file = tmpPath(name);
+    std::ofstream(file) << "theta_h_deg, D\n" << rows;
     const std::string args = "--model tabulated --ndf-table " + file + " --incidence 30";
-    const auto ref = measureJson(flags(args + " --reference"));
-    const auto gl = measureJson(flags(args));
+    auto ref = measureJson(flags(args + " --reference"));
+    auto gl = measureJson(flags(args));
     std::filesystem::remove(file);
     REQUIRE(ref.size() == 1);
     REQUIRE(gl.size() == 1);
+    return {ref, gl};
+}
+
+TEST_CASE("a thin ring of a tabulated NDF off the mirror direction: the reference finds it as GL does") {
+    // D > 0 only at theta_h 0.5-0.7 deg: dark at every survey grid sample and at the mirror direction (before:
+    // the reference said no_highlight, peak 0, while GL measured major 1.698 deg).
+    const auto [ref, gl] = ringAt30("ring.csv", "0, 0\n0.5, 0\n0.6, 10\n0.7, 0\n90, 0\n");
     CHECK(ref[0]["flags"].empty());
     CHECK(ref[0]["peak"].get<double>() > 0);
     CHECK(ref[0]["major_deg"].get<double>() == doctest::Approx(gl[0]["major_deg"].get<double>()).epsilon(0.02));
@@ -241,14 +250,7 @@ TEST_CASE("a ring of a tabulated NDF that the survey splits in 12 parts: GL meas
     // D = 1 at theta_h 10-11 deg, at 30 deg: one ring, which the survey's grid splits in 12 parts. GL took the
     // level from the brightest pixel of the first part's view, a 1 deg^2 sliver (5.0; the ring reaches 10.0):
     // 2 components, area 262 deg^2, aspect 0.8677 against the reference's 1, 250.7 and 0.8660.
-    const std::string file = tmpPath("ring10.csv");
-    std::ofstream(file) << "theta_h_deg, D\n0, 0\n9.9, 0\n10, 1\n11, 1\n11.1, 0\n90, 0\n";
-    const std::string args = "--model tabulated --ndf-table " + file + " --incidence 30";
-    const auto ref = measureJson(flags(args + " --reference"));
-    const auto gl = measureJson(flags(args));
-    std::filesystem::remove(file);
-    REQUIRE(ref.size() == 1);
-    REQUIRE(gl.size() == 1);
+    const auto [ref, gl] = ringAt30("ring10.csv", "0, 0\n9.9, 0\n10, 1\n11, 1\n11.1, 0\n90, 0\n");
     CHECK(gl[0]["flags"] == ref[0]["flags"]);
     CHECK(gl[0]["components"] == ref[0]["components"]);
     CHECK(gl[0]["peak"].get<double>() == doctest::Approx(ref[0]["peak"].get<double>()).epsilon(1e-4));
