@@ -279,9 +279,11 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
         long long size = -1, mtimeNs = -1;
         std::weak_ptr<const MeasuredBrdf> table;
     };
-    static std::mutex mutex;
-    static std::map<std::string, Entry> cache;
-    static std::deque<std::shared_ptr<const MeasuredBrdf>> recent;  // most recent first
+    // Never destroyed: at exit the tables would be freed (and malloc_trim run) during static destruction, in an
+    // order against the GL session's statics that no one chooses; CI saw the fit tests crash there after passing.
+    static std::mutex& mutex = *new std::mutex;
+    static std::map<std::string, Entry>& cache = *new std::map<std::string, Entry>;
+    static auto& recent = *new std::deque<std::shared_ptr<const MeasuredBrdf>>;  // most recent first
     struct stat st {};
     const bool known = ::stat(path.c_str(), &st) == 0;
     const long long size = known ? (long long)st.st_size : -1;
@@ -367,8 +369,8 @@ std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const M
         int axis, parity;
         std::shared_ptr<const MeasuredBrdf> half;
     };
-    static std::mutex mutex;
-    static std::vector<Entry> cache;
+    static std::mutex& mutex = *new std::mutex;  // never destroyed, as load()'s cache
+    static std::vector<Entry>& cache = *new std::vector<Entry>;
     const std::lock_guard<std::mutex> lock(mutex);
     // Only the halves of the table asked for now are kept (table_error asks for its six in turn, once per row);
     // another table's go, or they would add 6 tables' worth of memory per table measured.
