@@ -169,6 +169,97 @@ vec3 measuredBrdf(vec3 wi, vec3 wo) {
 }
 //@end
 
+//@block Rgl needs common angleFromSinCos
+// An RGL material (src/brdf/rgl.hpp, the double CPU twin): every table in one R32F texture buffer holding
+// rgl::Material::data as floats, at the same offsets; each function below mirrors its C++ namesake.
+uniform samplerBuffer uRgl;
+uniform ivec4 uRglCounts;  // nPhi, nTheta, isotropic, unused
+uniform ivec4 uRglGrids0;  // ndfX, ndfY, sigmaX, sigmaY
+uniform ivec4 uRglGrids1;  // vndfX, vndfY, rgbX, rgbY
+uniform ivec4 uRglAt0;     // phiAt, thetaAt, ndfAt, sigmaAt
+uniform ivec4 uRglAt1;     // vndfAt, cdfAt, marginalAt, rgbAt
+float rglValue(int i) { return texelFetch(uRgl, i).r; }
+// atan2(y, x) from angleFromSinCos (0 at the origin, as C's atan2(0, 0)).
+float rglAtan2(float y, float x) {
+    float len = sqrt(x * x + y * y);
+    if (!(len > 0.0)) return 0.0;
+    float s = abs(y) / len, c = x / len;
+    float a = c >= 0.0 ? angleFromSinCos(s, c) : PI - angleFromSinCos(s, -c);
+    return y < 0.0 ? -a : a;
+}
+// rgl::paramWeight: (index, weight of index + 1).
+vec2 rglParam(int at, int n, float x) {
+    if (n < 2) return vec2(0.0);
+    int i = 0;
+    while (i + 1 < n - 1 && rglValue(at + i + 1) <= x) ++i;
+    float p0 = rglValue(at + i), p1 = rglValue(at + i + 1);
+    float t = (x - p0) / (p1 - p0);
+    return vec2(float(i), isnan(t) ? 0.0 : clamp(t, 0.0, 1.0));
+}
+// rgl.cpp incidence(): linear between the two incidences on each axis.
+float rglIncidence(int i, vec2 phi, vec2 theta, int sliceStride) {
+    if (sliceStride == 0) return rglValue(i);
+    int st = uRglCounts.y > 1 ? 1 : 0, sp = uRglCounts.x > 1 ? uRglCounts.y : 0;
+    int base = i + (sp * int(phi.x) + st * int(theta.x)) * sliceStride;
+    int dp = sp * sliceStride, dt = st * sliceStride;
+    float lo = (1.0 - phi.y) * rglValue(base) + phi.y * rglValue(base + dp);
+    float hi = (1.0 - phi.y) * rglValue(base + dt) + phi.y * rglValue(base + dt + dp);
+    return (1.0 - theta.y) * lo + theta.y * hi;
+}
+// rgl::Material::grid: bilinear between nodes k / (n - 1).
+float rglGrid(int first, int nx, int ny, vec2 pos, vec2 phi, vec2 theta, int sliceStride) {
+    float px = max(pos.x, 0.0) * float(nx - 1), py = max(pos.y, 0.0) * float(ny - 1);
+    int ix = min(int(px), nx - 2), iy = min(int(py), ny - 2);
+    float wx = px - float(ix), wy = py - float(iy);
+    int i = first + ix + iy * nx;
+    return (1.0 - wy) * ((1.0 - wx) * rglIncidence(i, phi, theta, sliceStride) +
+                         wx * rglIncidence(i + 1, phi, theta, sliceStride)) +
+           wy * ((1.0 - wx) * rglIncidence(i + nx, phi, theta, sliceStride) +
+                 wx * rglIncidence(i + nx + 1, phi, theta, sliceStride));
+}
+// rgl::Material::invert: the VNDF's inverse warp (Marginal2D::invert).
+vec2 rglInvert(vec2 uWm, vec2 phi, vec2 theta) {
+    int nx = uRglGrids1.x, ny = uRglGrids1.y, slice = nx * ny;
+    int vndfAt = uRglAt1.x, cdfAt = uRglAt1.y, marginalAt = uRglAt1.z;
+    float sx = max(uWm.x, 0.0) * float(nx - 1), sy = max(uWm.y, 0.0) * float(ny - 1);
+    int px = min(int(sx), nx - 2), py = min(int(sy), ny - 2);
+    sx -= float(px);
+    sy -= float(py);
+    int offset = px + py * nx;
+    float v00 = rglIncidence(vndfAt + offset, phi, theta, slice), v10 = rglIncidence(vndfAt + offset + 1, phi, theta, slice),
+          v01 = rglIncidence(vndfAt + offset + nx, phi, theta, slice),
+          v11 = rglIncidence(vndfAt + offset + nx + 1, phi, theta, slice);
+    float c0 = (1.0 - sy) * v00 + sy * v01, c1 = (1.0 - sy) * v10 + sy * v11;
+    float x = sx * (c0 + 0.5 * sx * (c1 - c0));
+    x += (1.0 - sy) * rglIncidence(cdfAt + offset, phi, theta, slice) + sy * rglIncidence(cdfAt + offset + nx, phi, theta, slice);
+    int row = py * nx;
+    float r0 = rglIncidence(cdfAt + row + nx - 1, phi, theta, slice), r1 = rglIncidence(cdfAt + row + 2 * nx - 1, phi, theta, slice);
+    float rows = (1.0 - sy) * r0 + sy * r1;
+    x = rows > 0.0 ? x / rows : 0.0;
+    float y = sy * (r0 + 0.5 * sy * (r1 - r0));
+    y += rglIncidence(marginalAt + py, phi, theta, ny);
+    return vec2(x, y);
+}
+vec3 rglBrdf(vec3 wi, vec3 wo) {
+    if (!(wi.z > 0.0) || !(wo.z > 0.0)) return vec3(0.0);
+    vec3 wm = normalize(wi + wo);
+    float thetaI = angleFromSinCos(length(wi.xy), wi.z), phiI = rglAtan2(wi.y, wi.x);
+    float thetaM = angleFromSinCos(length(wm.xy), wm.z), phiM = rglAtan2(wm.y, wm.x);
+    vec2 uWi = vec2(sqrt(thetaI * (2.0 / PI)), (phiI + PI) * (0.5 / PI));
+    vec2 uWm = vec2(sqrt(thetaM * (2.0 / PI)), ((uRglCounts.z != 0 ? phiM - phiI : phiM) + PI) * (0.5 / PI));
+    uWm.y -= floor(uWm.y);
+    vec2 pw = rglParam(uRglAt0.x, uRglCounts.x, phiI), tw = rglParam(uRglAt0.y, uRglCounts.y, thetaI);
+    vec2 s = rglInvert(uWm, pw, tw);
+    int n = uRglGrids1.z * uRglGrids1.w;
+    vec3 fr;
+    for (int c = 0; c < 3; ++c)  // clipped at 0 as the reference (out-of-gamut spectra)
+        fr[c] = max(0.0, rglGrid(uRglAt1.w + c * n, uRglGrids1.z, uRglGrids1.w, s, pw, tw, 3 * n));
+    float ndf = rglGrid(uRglAt0.z, uRglGrids0.x, uRglGrids0.y, uWm, pw, tw, 0);
+    float sigma = rglGrid(uRglAt0.w, uRglGrids0.z, uRglGrids0.w, uWi, pw, tw, 0);
+    return fr * (ndf / (4.0 * sigma)) / wo.z;  // stored = f cos theta_o
+}
+//@end
+
 //@block F_SpectralTable
 // Spectral Fresnel from a table: F_Spectral at cos = (i / (N - 1))^2, computed in double on the CPU
 // (src/brdf/spectral.hpp, kFresnelTableSize: spaced evenly in sqrt(cos), denser toward grazing where F

@@ -60,8 +60,9 @@ py::list measureScenes(const std::vector<Items>& scenes) {
         std::vector<bool> table;
         for (const Items& items : scenes) {
             all.push_back(scene::resolve(python::values(items), scene::Purpose::Measure));
-            table.push_back(all.back().scene.brdf.measured != nullptr);
+            table.push_back(all.back().scene.brdf.isMeasured());
             all.back().scene.brdf.measured.reset();
+            all.back().scene.brdf.rgl.reset();
         }
         worker().run([&](measurement::Session& s) {
             for (size_t i = 0; i < all.size(); ++i) {

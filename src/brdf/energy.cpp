@@ -110,7 +110,7 @@ double energyE(double mu, const EnergyTables& t) { return lookup(t.E, mu); }
 dvec3 energyEs(double mu, const EnergyTables& t) { return lookup(t.Es, mu); }
 
 std::string energyRefusal(const Params& p) {
-    if (p.measured) return "not with a measured table (it holds every bounce it measured)";
+    if (p.isMeasured()) return "not with a measured table (it holds every bounce it measured)";
     const bool aniso = p.anisotropic() && allowsAnisotropy(p.model);
     if (aniso) return "isotropic models only (an anisotropic lobe's albedo depends on the azimuth too)";
     const bool roughnessModel = isMicrofacet(p.model) && !usesExponent(p.model) && p.model != Model::Tabulated;

@@ -2,6 +2,7 @@
 
 #include "brdf/dispatch.hpp"
 #include "brdf/merl.hpp"
+#include "brdf/rgl.hpp"
 
 namespace hilite::brdf {
 
@@ -42,6 +43,7 @@ dvec3 fresnel(const Params& p, double cosTheta) { return fresnelRow(p).cpp(p, co
 dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo) {
     if (wi.z <= 0.0 || wo.z <= 0.0) return dvec3(0.0);    // light or viewer below the horizon
     if (p.measured) return p.measured->evaluate(wi, wo);  // the table is the whole BRDF (multilinear, brdf/merl.hpp)
+    if (p.rgl) return p.rgl->evaluate(wi, wo);            // an RGL material, indexed by the light (brdf/rgl.hpp)
     if (p.model == Model::None) return dvec3(0.0);
     if (!isMicrofacet(p.model)) return dvec3(lobeRow(p.model).cpp(p, wi, wo));  // Phong, classic Phong, retro
     const HalfVector hv = halfVector(wi, wo);

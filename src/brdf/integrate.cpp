@@ -313,7 +313,7 @@ dvec3 albedo(const Params& p, double thetaDeg, double phiDeg) {
                     : diffuseAlbedo(p, wi);
     if (p.multiscatter != Multiscatter::None)
         rho += energyAlbedo(wi, [&](const dvec3& a, const dvec3& b) { return evaluateMultiscatter(p, a, b); });
-    if (isMicrofacet(p.model) || p.measured)  // a table over half/difference angles: integrated over h too
+    if (isMicrofacet(p.model) || p.isMeasured())  // a table over half vectors: integrated over h too
         rho += microfacetAlbedo(p, wi);
     else if (p.model == Model::Phong || p.model == Model::PhongClassic || p.model == Model::Retro)
         rho += reflectionLobeAlbedo(p, wi);

@@ -2,6 +2,7 @@
 
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
+#include "brdf/rgl.hpp"
 #include "brdf/spectral.hpp"
 
 #include <ostream>
@@ -122,6 +123,7 @@ std::ostream& operator<<(std::ostream& os, Diffuse d) { return os << toString(d)
 std::ostream& operator<<(std::ostream& os, Multiscatter m) { return os << toString(m); }
 
 std::ostream& operator<<(std::ostream& os, const Params& p) {
+    if (p.rgl) return os << "measured=" << p.rgl->path << " (RGL material, " << p.rgl->description << ")";
     if (p.measured)
         return os << "measured=" << p.measured->path << " (MERL table, multilinear; no_data_bins=" << p.measured->noData
                   << ")";

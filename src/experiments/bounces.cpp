@@ -56,7 +56,7 @@ scene::Resolved resolveBounceScene(scene::Values values) {
     values.set("geometry", "smith", "bounces");
     scene::Resolved r = scene::resolve(values, scene::Purpose::Brdf);
     const brdf::Params& p = r.scene.brdf;
-    if (p.model != brdf::Model::Beckmann || p.measured)
+    if (p.model != brdf::Model::Beckmann || p.isMeasured())
         throw InputError(values.where("model") +
                          ": bounces are traced on a Gaussian height field, whose slopes are "
                          "Beckmann's: beckmann (got '" +

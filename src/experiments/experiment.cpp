@@ -260,11 +260,12 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
                    "or folder = \"DIR\" (a file key's files)");
     if (f.node("folder")) {
         // Every file of the key's kind in a folder beside the experiment file, in name order (a MERL table folder
-        // for fit_models): .binary for material.measured, .brdf for material.brdf.
+        // for fit_models): .binary (MERL) and .bsdf (RGL) for material.measured, .brdf for material.brdf.
         const scene::Param* p = scene::find(axis.key.substr(axis.key.find('.') + 1));
         const bool measured = axis.key == "material.measured", brdfKey = axis.key == "material.brdf";
         if (!p || !(measured || brdfKey))
-            f.fail("folder", "lists files for material.measured (.binary) or material.brdf (.brdf), not " + axis.key);
+            f.fail("folder",
+                   "lists files for material.measured (.binary, .bsdf) or material.brdf (.brdf), not " + axis.key);
         const std::string folder = *f.string("folder");
         if (folder.empty()) f.fail("folder", "an empty folder name");
         const auto slash = file.rfind('/');
@@ -274,13 +275,16 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
         if (!fs::is_directory(dir, ec)) f.fail("folder", "'" + printable(dir) + "' is not a folder");
         std::vector<std::string> names;
         for (const auto& entry : fs::directory_iterator(dir, ec))
-            if (entry.is_regular_file(ec) && entry.path().extension() == (measured ? ".binary" : ".brdf"))
+            if (const std::string ext = entry.path().extension().string();
+                entry.is_regular_file(ec) && (measured ? ext == ".binary" || ext == ".bsdf" : ext == ".brdf"))
                 names.push_back(entry.path().filename().string());
         std::sort(names.begin(), names.end());
         if (names.empty())
             f.fail("folder",
-                   "'" + printable(dir) + "' holds no " + (measured ? ".binary" : ".brdf") + " file" +
-                       (measured ? " (MERL tables: https://www.merl.com/brdf/, or hilite brdf tabulate)" : ""));
+                   "'" + printable(dir) + "' holds no " + (measured ? ".binary or .bsdf" : ".brdf") + " file" +
+                       (measured ? " (MERL tables: https://www.merl.com/brdf/, or hilite brdf tabulate; RGL materials: "
+                                   "https://rgl.epfl.ch/materials)"
+                                 : ""));
         const std::string origin = f.at("folder");
         for (const std::string& n : names) {
             const std::string path = (dir.back() == '/' ? dir : dir + "/") + n;

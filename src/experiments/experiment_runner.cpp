@@ -92,7 +92,7 @@ void ExperimentRunner::applyMatch(scene::Values& values, nlohmann::json& row) {
     if (r.scene.brdfFile)
         throw InputError(m_exp.path + ": [match]: matching widths needs a CPU twin, and " + r.scene.brdfFile->path +
                          " (a .brdf file) has none: set its parameters by hand");
-    if (r.scene.brdf.measured)
+    if (r.scene.brdf.isMeasured())
         throw InputError(m_exp.path + ": [match]: matching widths sets a model's width, and " +
                          r.values.text("measured") + " (a measured table) has none");
     r.scene.light.incidenceDeg = 0;

@@ -2,6 +2,7 @@
 
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
+#include "brdf/rgl.hpp"
 #include "hilite/render/area_light.hpp"
 #include "measurement/micro_fields.hpp"
 #include "measurement/peak_frame.hpp"
@@ -87,7 +88,8 @@ TableError tableError(render::Renderer* renderer, const scene::Resolved& r, cons
         double worst[4] = {0, 0, 0, 0};
         for (int parity = 0; parity < 2; ++parity) {
             render::Scene s = r.scene;
-            s.brdf.measured = brdf::merl::halfResolution(r.scene.brdf.measured, axis, parity);
+            if (r.scene.brdf.rgl) s.brdf.rgl = brdf::rgl::halfResolution(r.scene.brdf.rgl, axis, parity);
+            else s.brdf.measured = brdf::merl::halfResolution(r.scene.brdf.measured, axis, parity);
             const analysis::Shape h =
                 r.reference ? measureReference(s, setup.options).shape : measure(renderer, s, setup).shape;
             const double d[4] = {full.aspect - h.aspect, full.eccentricity - h.eccentricity,
@@ -249,7 +251,7 @@ Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
     const MeasureSetup& setup = r.setup;
     if (r.reference) {
         Result res = resultOf(r, measureReference(scene, setup.options), setup.width, setup.height, "reference");
-        if (scene.brdf.measured && !analysis::unmeasured(res.measurement.shape))
+        if (scene.brdf.isMeasured() && !analysis::unmeasured(res.measurement.shape))
             res.tableError = tableError(renderer, r, setup, res.measurement.shape);
         return res;
     }
@@ -263,13 +265,13 @@ Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
         res.tolerance =
             ToleranceFields{tr.errorEstimate,      tr.predictedError, tr.met,      tr.setup,     tr.checkSetup,
                             tr.check.shape.aspect, tr.rounds,         tr.total_ms, tr.startup_ms};
-        if (scene.brdf.measured && !analysis::unmeasured(res.measurement.shape))
+        if (scene.brdf.isMeasured() && !analysis::unmeasured(res.measurement.shape))
             res.tableError = tableError(renderer, r, tr.setup, res.measurement.shape);
         return res;
     }
     Result res = resultOf(r, measure(renderer, scene, setup), setup.width, setup.height, method);
     if (renderer) res.prefilter = prefilterFields(*renderer, scene, setup, res.measurement);  // --prefilter-check
-    if (scene.brdf.measured && !analysis::unmeasured(res.measurement.shape))
+    if (scene.brdf.isMeasured() && !analysis::unmeasured(res.measurement.shape))
         res.tableError = tableError(renderer, r, setup, res.measurement.shape);
     return res;
 }

@@ -236,7 +236,7 @@ dvec3 lobeCentre(const brdf::Params& p, const dvec3& we) {
 /// cos(theta) of the perpendicular narrowing, at most 1e-3 rad for tables and measured data.
 double lobeScale(const brdf::Params& p, const dvec3& q) {
     double w = brdf::lobeWidth(p);
-    if (p.measured || p.model == brdf::Model::None || p.model == brdf::Model::Tabulated) w = std::min(w, 1e-3);
+    if (p.isMeasured() || p.model == brdf::Model::None || p.model == brdf::Model::Tabulated) w = std::min(w, 1e-3);
     return std::max(1e-9, 2.0 * w * std::max(q.z, 1e-3));
 }
 
@@ -301,7 +301,8 @@ std::string ruleKey(const Scene& s) {
     std::ostringstream key;
     key.precision(17);
     key << s << " eye=" << s.eyeDistance << " table=" << s.brdf.ndfTable.get() << " measured=" << s.brdf.measured.get()
-        << " spectrum=" << s.brdf.spectrum.get() << " target=" << s.light.ruleTarget << " rings=" << s.light.rings;
+        << " rgl=" << s.brdf.rgl.get() << " spectrum=" << s.brdf.spectrum.get() << " target=" << s.light.ruleTarget
+        << " rings=" << s.light.rings;
     return key.str();
 }
 

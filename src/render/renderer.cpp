@@ -3,6 +3,7 @@
 #include "brdf/energy.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
+#include "brdf/rgl.hpp"
 #include "gl/check.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
@@ -107,6 +108,15 @@ std::vector<std::string> activeEffects(const Scene& scene) {
     std::vector<std::string> out = termBlocks(scene.brdf);
     out.push_back(describeLight(scene));
     if (scene.surface.bumps) out.push_back(bumpEffect(scene));
+    if (scene.brdf.rgl) {  // the material is the whole BRDF: no analytic term runs
+        const brdf::rgl::Material& m = *scene.brdf.rgl;
+        std::ostringstream s;
+        s << "measured RGL material " << m.path << " (" << m.description << "): " << m.at.nTheta << " incidences x "
+          << m.at.nPhi << " azimuths, VNDF " << m.at.vndfX << " x " << m.at.vndfY << ", rgb " << m.at.rgbX << " x "
+          << m.at.rgbY << ", bilinear between nodes and linear between incidences, indexed by the light direction, f = "
+          << "stored / cos theta_o; no analytic lobe, Fresnel, geometry or diffuse term";
+        out.insert(out.begin(), s.str());
+    }
     if (scene.brdf.measured) {  // the table is the whole BRDF: no analytic term runs
         const brdf::merl::MeasuredBrdf& m = *scene.brdf.measured;
         std::ostringstream s;
@@ -199,6 +209,7 @@ Renderer::~Renderer() {
     m_fbos.clear();
     m_bumpTextures.reset();
     for (auto& t : m_measuredTextures) glDeleteTextures(1, &t.second);
+    for (auto& t : m_rglTextures) glDeleteTextures(1, &t.texture), glDeleteBuffers(1, &t.buffer);
     if (m_vao) glDeleteVertexArrays(1, &m_vao);
 }
 
@@ -308,6 +319,7 @@ void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const Pinho
     prog.use();
     setUniforms(prog, scene, camera, jitter);
     if (scene.brdf.measured && !scene.brdfFile) bindMeasured(prog, scene.brdf.measured);
+    if (scene.brdf.rgl && !scene.brdfFile) bindRgl(prog, scene.brdf.rgl);
     if (scene.surface.bumps) {
         if (!m_bumpTextures) m_bumpTextures = std::make_unique<BumpTextures>();
         m_bumpTextures->bind(prog, scene, camera);
@@ -361,6 +373,55 @@ void Renderer::bindMeasured(const gl::Program& prog, const std::shared_ptr<const
     }
     glBindTexture(GL_TEXTURE_3D, tex);
     if (const int loc = prog.uniform("uMeasured"); loc >= 0) glUniform1i(loc, kUnit);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+void Renderer::bindRgl(const gl::Program& prog, const std::shared_ptr<const brdf::rgl::Material>& material) {
+    // Unit 8: past the bump fields' 0-5 and the MERL table's 7 (a measured scene has no bumps).
+    constexpr int kUnit = 8;
+    m_rglTextures.erase(std::remove_if(m_rglTextures.begin(), m_rglTextures.end(),
+                                       [](const RglTexture& t) {
+                                           if (!t.material.expired()) return false;
+                                           glDeleteTextures(1, &t.texture);
+                                           glDeleteBuffers(1, &t.buffer);
+                                           return true;
+                                       }),
+                        m_rglTextures.end());
+    unsigned int tex = 0;
+    for (const auto& t : m_rglTextures)
+        if (t.material.lock() == material) tex = t.texture;
+    glActiveTexture(GL_TEXTURE0 + kUnit);
+    if (!tex) {
+        const brdf::rgl::Material& m = *material;
+        GLint limit = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+        if (m.data.size() > std::size_t(limit))
+            throw InputError(m.path + ": its tables hold " + std::to_string(m.data.size()) +
+                             " values, more than this GL's texture buffer takes (" + std::to_string(limit) + ")");
+        const std::vector<float> values(m.data.begin(), m.data.end());
+        RglTexture t{material, 0, 0};
+        glGenBuffers(1, &t.buffer);
+        glBindBuffer(GL_TEXTURE_BUFFER, t.buffer);
+        glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(values.size() * sizeof(float)), values.data(), GL_STATIC_DRAW);
+        glBindBuffer(GL_TEXTURE_BUFFER, 0);
+        glGenTextures(1, &t.texture);
+        glBindTexture(GL_TEXTURE_BUFFER, t.texture);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, t.buffer);
+        HILITE_GL_CHECK_WHAT("uploading an RGL material");
+        m_rglTextures.push_back(t);
+        tex = t.texture;
+    }
+    glBindTexture(GL_TEXTURE_BUFFER, tex);
+    const brdf::rgl::Layout& at = material->at;
+    auto set = [&](const char* name, int x, int y, int z, int w) {
+        if (const int loc = prog.uniform(name); loc >= 0) glUniform4i(loc, x, y, z, w);
+    };
+    set("uRglCounts", at.nPhi, at.nTheta, material->isotropic ? 1 : 0, 0);
+    set("uRglGrids0", at.ndfX, at.ndfY, at.sigmaX, at.sigmaY);
+    set("uRglGrids1", at.vndfX, at.vndfY, at.rgbX, at.rgbY);
+    set("uRglAt0", int(at.phiAt), int(at.thetaAt), int(at.ndfAt), int(at.sigmaAt));
+    set("uRglAt1", int(at.vndfAt), int(at.cdfAt), int(at.marginalAt), int(at.rgbAt));
+    if (const int loc = prog.uniform("uRgl"); loc >= 0) glUniform1i(loc, kUnit);
     glActiveTexture(GL_TEXTURE0);
 }
 

@@ -89,6 +89,13 @@ private:
     /// Measured tables' textures by table, weakly: a table nobody holds any more has its texture deleted.
     std::vector<std::pair<std::weak_ptr<const brdf::merl::MeasuredBrdf>, unsigned int>> m_measuredTextures;
     void bindMeasured(const gl::Program& prog, const std::shared_ptr<const brdf::merl::MeasuredBrdf>& table);
+    /// RGL materials as texture buffers (block Rgl), by material, weakly as the MERL tables: {buffer, texture}.
+    struct RglTexture {
+        std::weak_ptr<const brdf::rgl::Material> material;
+        unsigned int buffer = 0, texture = 0;
+    };
+    std::vector<RglTexture> m_rglTextures;
+    void bindRgl(const gl::Program& prog, const std::shared_ptr<const brdf::rgl::Material>& material);
     double m_shaderTimeLimit = 0;
     Watchdog m_watchdog;
 };

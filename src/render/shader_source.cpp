@@ -170,6 +170,7 @@ std::vector<std::string> programBlocks(const brdf::Params& p) {
 
 std::vector<std::string> termBlocks(const brdf::Params& p) {
     if (p.measured) return {"Measured"};  // the table is the whole BRDF: no analytic term is compiled in
+    if (p.rgl) return {"Rgl"};
     std::vector<std::string> out;
     const Rows rows(p);
     if (rows.distribution) out.push_back("HalfVector");
@@ -184,8 +185,8 @@ std::string dispatchSource(const brdf::Params& p) {
     s << "// ---- Dispatch (generated for the terms:";
     for (const auto& b : termBlocks(p)) s << " " << b;
     s << ") ----\n";
-    if (p.measured) {  // the texture is bound by the renderer (Renderer::drawWith)
-        s << "vec3 brdf(vec3 wi, vec3 wo) { return measuredBrdf(wi, wo); }\n";
+    if (p.measured || p.rgl) {  // the textures are bound by the renderer (Renderer::drawWith)
+        s << "vec3 brdf(vec3 wi, vec3 wo) { return " << (p.rgl ? "rglBrdf" : "measuredBrdf") << "(wi, wo); }\n";
         return s.str();
     }
     const Rows rows(p);

@@ -3,6 +3,7 @@
 #include "brdf/materials.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
+#include "brdf/rgl.hpp"
 #include "brdf/spectral.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
@@ -26,8 +27,12 @@ using nlohmann::json;
 
 // ---- What a parameter applies to ----
 
-bool builtin(const Resolved& r) { return !r.scene.brdfFile && !r.scene.brdf.measured; }
-bool measured(const Resolved& r) { return bool(r.scene.brdf.measured); }
+bool builtin(const Resolved& r) { return !r.scene.brdfFile && !r.scene.brdf.isMeasured(); }
+bool measured(const Resolved& r) { return r.scene.brdf.isMeasured(); }
+/// The measured file as named (MERL or RGL).
+const std::string& measuredPath(const Resolved& r) {
+    return r.scene.brdf.rgl ? r.scene.brdf.rgl->path : r.scene.brdf.measured->path;
+}
 bool usesExponent(const Resolved& r) { return builtin(r) && brdf::usesExponent(r.scene.brdf.model); }
 bool usesRoughness(const Resolved& r) {
     const Model m = r.scene.brdf.model;
@@ -214,8 +219,7 @@ std::vector<Param> build() {
          "model",
          [](const Resolved& r) -> json {
              if (r.scene.brdfFile) return r.scene.brdfFile->path.substr(r.scene.brdfFile->path.rfind('/') + 1);
-             if (r.scene.brdf.measured)
-                 return "measured:" + r.scene.brdf.measured->path.substr(r.scene.brdf.measured->path.rfind('/') + 1);
+             if (r.scene.brdf.isMeasured()) return "measured:" + measuredPath(r).substr(measuredPath(r).rfind('/') + 1);
              return brdf::toString(r.scene.brdf.model);
          }});
     bindChoice(
@@ -487,15 +491,19 @@ std::vector<Param> build() {
          false,
          {},
          "",
-         "a MERL .binary table (90 x 90 x 180, Matusik 2003): the whole BRDF (lobe, F, G, diffuse), looked up "
-         "cubic in theta_h and linear in theta_d, phi_d between bin centres (multilinear where a bin lacks data); "
-         "replaces --model and its terms (the row's model says measured:FILE; not with any other "
+         "a measured material, the whole BRDF (lobe, F, G, diffuse), told apart by content: a MERL .binary table "
+         "(90 x 90 x 180, Matusik 2003; cubic in theta_h and linear in theta_d, phi_d between bin centres, multilinear "
+         "where a bin lacks data) or an RGL .bsdf file (Dupuy & Jakob 2018, rgl.epfl.ch/materials; its tables "
+         "indexed by the light direction); replaces --model and its terms (the row's model says measured:FILE; not "
+         "with any other "
          "material flag, nor --bumps)",
          "every scene",
          measured,
          "measured",
-         [](const Resolved& r) -> json { return r.scene.brdf.measured->path; }});
-    p.back().read = [](const Resolved& r, bool) { return identity(r.scene.brdf.measured.get()); };
+         [](const Resolved& r) -> json { return measuredPath(r); }});
+    p.back().read = [](const Resolved& r, bool) {
+        return r.scene.brdf.rgl ? identity(r.scene.brdf.rgl.get()) : identity(r.scene.brdf.measured.get());
+    };
     add({"brdf",
          T::Material,
          K::Path,

@@ -6,6 +6,7 @@
 #include "brdf/materials.hpp"
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
+#include "brdf/rgl.hpp"
 #include "brdf/spectral.hpp"
 #include "core/text.hpp"
 #include "hilite/core/error.hpp"
@@ -248,7 +249,10 @@ void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Pa
     if (table) p.ndfTable = brdf::loadNdfTable(in.text(kNdfTable));
     resolveFresnel(in, p, spectralStepNm);
     if (in.given(kMeasured)) {
-        p.measured = brdf::merl::load(in.text(kMeasured), in.where(kMeasured));
+        // Told apart by content, not by name: an RGL file starts with "tensor_file", a MERL file with 90, 90, 180.
+        const std::string file = in.text(kMeasured);
+        if (brdf::rgl::fileIsTensorFile(file)) p.rgl = brdf::rgl::load(file, in.where(kMeasured));
+        else p.measured = brdf::merl::load(file, in.where(kMeasured));
         p.model = brdf::Model::None;  // no analytic term runs: evaluate() and the shader use the table alone
         p.fresnel = brdf::Fresnel::None;
         p.diffuse = brdf::Diffuse::None;
@@ -279,7 +283,7 @@ void checkScene(const Reader& in, const render::Scene& s) {
                                  " (its BRDF() is the whole BRDF; write a diffuse term into the file instead)");
     if (!s.surface.bumps) return;
     const std::string w = in.where(kBumps);
-    if (s.brdf.measured)
+    if (s.brdf.isMeasured())
         throw InputError(w +
                          ": the bump field's facets take a slope distribution; a measured table has none "
                          "(drop --measured or --bumps)");
@@ -391,7 +395,7 @@ Resolved resolve(const Values& values, Purpose purpose) {
     for (const Param& p : registry())
         if (p.write) p.write(r, in.text(p));
     resolveBrdf(in, purpose, r.spectralStepNm, s.brdf);
-    if (s.brdf.measured && in.given(kBrdf))  // before reading the .brdf: the combination is the error
+    if (s.brdf.isMeasured() && in.given(kBrdf))  // before reading the .brdf: the combination is the error
         throw InputError(in.where(kMeasured) + ": not with " + in.where(kBrdf) + " (each is the whole BRDF: give one)");
     if (in.given(kBrdf)) {
         auto file = std::make_shared<brdf_file::BrdfFile>(brdf_file::load(in.text(kBrdf)));

@@ -169,7 +169,7 @@ TEST_CASE("fit: the fit_models experiment over a folder of tables writes the ran
         {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \"nowhere\"\n[fit]\n",
          "is not a folder"},
         {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \".\"\n[fit]\n",
-         "holds no .binary file"},
+         "holds no .binary or .bsdf file"},
         {"[experiment]\nname = \"x\"\n[[sweep]]\nkey = \"material.roughness\"\nfolder = \"tables\"\n[fit]\n",
          "folder: lists files for"},
     };

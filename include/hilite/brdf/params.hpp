@@ -19,6 +19,9 @@ struct EnergyTables;  // brdf/energy.hpp
 namespace merl {
 struct MeasuredBrdf;  // brdf/merl.hpp
 }
+namespace rgl {
+struct Material;  // brdf/rgl.hpp
+}
 
 /// Specular model: a reflection lobe about the mirror direction, or a microfacet NDF of the half vector.
 enum class Model {
@@ -99,6 +102,10 @@ struct Params {
     /// when set, model, fresnel, geometry and diffuse are unused (resolve sets them to none) and evaluate()
     /// returns the table's multilinear lookup.
     std::shared_ptr<const merl::MeasuredBrdf> measured;
+    /// measured: an RGL `.bsdf` material (brdf/rgl.hpp), the whole BRDF as a MERL table is (at most one of the two)
+    std::shared_ptr<const rgl::Material> rgl;
+    /// Whether a measured table (MERL or RGL) is the whole BRDF.
+    bool isMeasured() const { return measured || rgl; }
     Geometry geometry = Geometry::Implicit;
     Diffuse diffuse = Diffuse::None;
     dvec3 albedo{0.5, 0.5, 0.5};  ///< lambert / oren-nayar rho
