@@ -306,6 +306,7 @@ Action addBrdf(CLI::App& app) {
 
     const auto [bounces, runBounces] = addBrdfBounces(app);
     const auto [slice, runSliceCmd] = addBrdfSlice(app);
+    const auto [inspectCmd, runInspectCmd] = addBrdfInspect(app);
 
     app.footer(
         "Examples: hilite brdf fresnel --material copper --incidence 0:90:5\n"
@@ -314,8 +315,11 @@ Action addBrdf(CLI::App& app) {
         "          hilite brdf strip --material gold -o gold.png\n"
         "          hilite brdf tabulate --model ggx --roughness 0.1 --geometry smith --fresnel schlick -o ggx.binary\n"
         "          hilite brdf bounces --roughness 0.6 --material gold --incidence 0,60\n"
-        "          hilite brdf slice --model ggx --roughness 0.1 --incidence 60 -o slices");
-    return [=, bounces = bounces, runBounces = runBounces, slice = slice, runSliceCmd = runSliceCmd] {
+        "          hilite brdf slice --model ggx --roughness 0.1 --incidence 60 -o slices\n"
+        "          hilite brdf inspect paper_white_rgb.bsdf --incidence 0,30,60");
+    return [=, bounces = bounces, runBounces = runBounces, slice = slice, runSliceCmd = runSliceCmd,
+            inspectCmd = inspectCmd, runInspectCmd = runInspectCmd] {
+        if (inspectCmd->parsed()) return runInspectCmd();
         if (bounces->parsed()) return runBounces();
         if (slice->parsed()) return runSliceCmd();
         if (albedo->parsed()) return runAlbedo(*fa);

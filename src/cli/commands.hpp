@@ -27,5 +27,6 @@ Action addFit(CLI::App& app);  ///< cli/fit_cmd.cpp
 /// `brdf bounces` (cli/bounces_cmd.cpp): the subcommand, added to `brdf`, and its action.
 std::pair<CLI::App*, Action> addBrdfBounces(CLI::App& brdf);
 std::pair<CLI::App*, Action> addBrdfSlice(CLI::App& brdf);
+std::pair<CLI::App*, Action> addBrdfInspect(CLI::App& brdf);
 
 }  // namespace hilite::cli

@@ -2,7 +2,9 @@
 // material whose every table is known, the seven real files of ../shared (skipped, naming what is missing,
 // where a clone has none), and bad files refused in one line (a GL twin per pixel: tests/render/test_rgl_gl.cpp).
 
+#include "brdf/inspect.hpp"
 #include "brdf/integrate.hpp"
+#include "brdf/merl.hpp"
 #include "brdf/rgl.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
@@ -18,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -264,4 +267,45 @@ TEST_CASE("rgl: a directory, a FIFO and a 10 GB sparse file are refused before a
         CHECK(why.find("--measured: '" + path + "'") == 0);
         CHECK(why.find('\n') == std::string::npos);
     }
+}
+
+TEST_CASE("rgl: brdf inspect reports the file, its albedo as brdf::albedo, and a table's off-specular peak") {
+    brdf::Params p;
+    p.model = brdf::Model::None;
+    p.rgl = std::make_shared<const brdf::rgl::Material>(synthetic(7));
+    const brdf::Inspection in = brdf::inspect(p, {0.0, 30.0}, 0.0);
+    CHECK(in.format == "rgl");
+    CHECK(in.description == "synthetic");
+    REQUIRE(in.thetaINodesDeg.size() == 3);
+    CHECK(in.thetaINodesDeg[2] == doctest::Approx(90.0));
+    CHECK(in.reciprocity.pairs > 1000);
+    REQUIRE(in.incidences.size() == 2);
+    const dvec3 a = brdf::albedo(p, 30.0, 0.0);
+    CHECK(in.incidences[1].albedo.x == a.x);
+
+    // A GGX 0.2 Smith Schlick table: reciprocal by construction, and its peak of f cos theta_o where a scan of
+    // the analytic model puts it (an independent evaluation: the model, not the table).
+    brdf::Params ggx;
+    ggx.model = brdf::Model::GGX;
+    ggx.roughness = 0.2;
+    ggx.geometry = brdf::Geometry::Smith;
+    ggx.fresnel = brdf::Fresnel::Schlick;
+    ggx.f0 = dvec3(0.04);
+    brdf::Params table;
+    table.model = brdf::Model::None;
+    table.measured = std::make_shared<const brdf::merl::MeasuredBrdf>(brdf::merl::tabulate(ggx));
+    const brdf::Inspection t = brdf::inspect(table, {60.0}, 0.0);
+    CHECK(t.format == "merl");
+    CHECK(t.reciprocity.max < 1e-12);
+    double best = -1, bestTheta = 0;
+    for (int i = 0; i < 360; ++i) {  // the analytic model in the plane of incidence
+        const dvec3 wo = sphericalDirectionDeg(0.25 * i, 180.0);
+        const double v = brdf::evaluate(ggx, sphericalDirectionDeg(60.0, 0.0), wo).y * wo.z;
+        if (v > best) best = v, bestTheta = 0.25 * i;
+    }
+    MESSAGE("GGX 0.2 at 60 deg: the table's peak of f cos theta_o at " << t.incidences[0].peakThetaODeg
+                                                                       << " deg, the model's at " << bestTheta);
+    CHECK(bestTheta > 61.0);  // off-specular: beyond the mirror direction
+    CHECK(std::abs(t.incidences[0].peakThetaODeg - bestTheta) <= 0.5);
+    CHECK(t.incidences[0].peakOffsetDeg == doctest::Approx(t.incidences[0].peakThetaODeg - 60.0).epsilon(1e-6));
 }
