@@ -18,8 +18,6 @@ namespace {
 /// Rec. 709 luminance of linear sRGB.
 double luminance(const dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
-dvec3 direction(double thetaDeg, double phiDeg) { return sphericalDirectionDeg(thetaDeg, phiDeg); }
-
 Reciprocity reciprocity(const Params& p) {
     std::mt19937_64 rng(20181206);  // fixed: the same pairs every run
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -56,16 +54,16 @@ IncidenceInspection incidence(const Params& p, double thetaDeg, double azimuthDe
     IncidenceInspection out;
     out.thetaDeg = thetaDeg;
     out.albedo = albedo(p, thetaDeg, azimuthDeg);
-    const dvec3 wi = direction(thetaDeg, azimuthDeg), wr(-wi.x, -wi.y, wi.z);
+    const dvec3 wi = sphericalDirectionDeg(thetaDeg, azimuthDeg), wr(-wi.x, -wi.y, wi.z);
     double best = -1;
     for (int i = 0; i < 360; ++i)  // theta_o 0 .. 89.75 deg
         for (int j = 0; j < 720; ++j) {
             const double t = 0.25 * i, ph = 0.5 * j;
-            const dvec3 wo = direction(t, ph);
+            const dvec3 wo = sphericalDirectionDeg(t, ph);
             const double v = luminance(evaluate(p, wi, wo)) * wo.z;
             if (v > best) best = v, out.peakThetaODeg = t, out.peakPhiODeg = ph;
         }
-    const dvec3 peak = direction(out.peakThetaODeg, out.peakPhiODeg);
+    const dvec3 peak = sphericalDirectionDeg(out.peakThetaODeg, out.peakPhiODeg);
     out.peakOffsetDeg = rad2deg(std::acos(std::clamp(glm::dot(peak, wr), -1.0, 1.0)));
     return out;
 }

@@ -42,26 +42,7 @@ brdf::Params measured() {
 }  // namespace
 
 TEST_CASE("render::Renderer a measured table matches its double twin pixel by pixel") {
-    auto& env = test::glEnv();
-    double worst = 0;
-    for (double incidence : {0.0, 30.0, 60.0, 80.0})
-        for (double fov : {20.0, 90.0}) {  // the peak's bins, and the lobe's tails out to the horizon
-            render::Scene s;
-            s.brdf = measured();
-            s.light.incidenceDeg = incidence;
-            s.light.azimuthDeg = 15.0;
-            const MirrorChart chart = s.light.chart();
-            dvec3 c = chart.wr();
-            if (c.z < 1e-3) c = glm::normalize(dvec3(c.x, c.y, 1e-3));
-            const auto r = test::compareWithTwin(*env.renderer, s, PinholeCamera::measurement(chart, c, fov, 96, 64));
-            CAPTURE(incidence);
-            CAPTURE(fov);
-            CHECK(r.allFinite);
-            CHECK(r.allNonNegative);
-            CHECK(r.compared >= 50);
-            CHECK(r.maxRelError < 1e-4);
-            worst = std::max(worst, r.maxRelError);
-        }
+    const double worst = test::checkAgainstTwinOverViews(measured(), {0.0, 30.0, 60.0, 80.0}, 1e-4);
     MESSAGE("measured table: worst GL vs twin relative error " << worst);
 }
 

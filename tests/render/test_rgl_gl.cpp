@@ -25,37 +25,13 @@ brdf::Params rglParams(std::shared_ptr<const brdf::rgl::Material> m) {
     return p;
 }
 
-/// The worst relative error of GL against the twin over incidences and fields of view.
-double worstAgainstTwin(const brdf::Params& p) {
-    auto& env = test::glEnv();
-    double worst = 0;
-    for (double incidence : {0.0, 20.0, 45.0, 70.0})
-        for (double fov : {20.0, 90.0}) {  // the peak's nodes, and the lobe's tails out to the horizon
-            render::Scene s;
-            s.brdf = p;
-            s.light.incidenceDeg = incidence;
-            s.light.azimuthDeg = 15.0;
-            const MirrorChart chart = s.light.chart();
-            dvec3 c = chart.wr();
-            if (c.z < 1e-3) c = glm::normalize(dvec3(c.x, c.y, 1e-3));
-            const auto r = test::compareWithTwin(*env.renderer, s, PinholeCamera::measurement(chart, c, fov, 96, 64));
-            CAPTURE(incidence);
-            CAPTURE(fov);
-            CHECK(r.allFinite);
-            CHECK(r.allNonNegative);
-            CHECK(r.compared >= 50);
-            CHECK(r.maxRelError < 1e-3);
-            worst = std::max(worst, r.maxRelError);
-        }
-    return worst;
-}
-
 }  // namespace
 
 TEST_CASE("render::Renderer an RGL material matches its double twin pixel by pixel (synthetic)") {
     const auto m = std::make_shared<const brdf::rgl::Material>(
         brdf::rgl::parse(hilite_test::tensorFile(hilite_test::syntheticRgl(7)), "synthetic.bsdf"));
-    MESSAGE("synthetic RGL material: worst GL vs twin relative error " << worstAgainstTwin(rglParams(m)));
+    MESSAGE("synthetic RGL material: worst GL vs twin relative error "
+            << test::checkAgainstTwinOverViews(rglParams(m), {0.0, 20.0, 45.0, 70.0}, 1e-3));
 }
 
 TEST_CASE("render::Renderer the real RGL files match their double twin pixel by pixel") {
@@ -68,7 +44,8 @@ TEST_CASE("render::Renderer the real RGL files match their double twin pixel by 
         }
         CAPTURE(file);
         MESSAGE(std::string(name) << ": worst GL vs twin relative error "
-                                  << worstAgainstTwin(rglParams(brdf::rgl::load(file))));
+                                  << test::checkAgainstTwinOverViews(rglParams(brdf::rgl::load(file)),
+                                                                     {0.0, 20.0, 45.0, 70.0}, 1e-3));
     }
 }
 

@@ -72,4 +72,33 @@ inline TwinComparison compareWithTwin(render::Renderer& r, const render::Scene& 
     return out;
 }
 
+/// compareWithTwin for the material `brdf` lit at each incidence (azimuth 15 deg) and viewed about the mirror
+/// direction (kept 1e-3 above the horizon) with a 20 and a 90 deg field of view (the peak, and the lobe's tails
+/// out to the horizon), 96 x 64: each view's checks made (finite, non-negative, 50 pixels compared, relative
+/// error below maxRelError); returns the worst relative error.
+inline double checkAgainstTwinOverViews(const brdf::Params& brdf, const std::vector<double>& incidences,
+                                        double maxRelError) {
+    auto& env = glEnv();
+    double worst = 0;
+    for (double incidence : incidences)
+        for (double fov : {20.0, 90.0}) {
+            render::Scene s;
+            s.brdf = brdf;
+            s.light.incidenceDeg = incidence;
+            s.light.azimuthDeg = 15.0;
+            const MirrorChart chart = s.light.chart();
+            dvec3 c = chart.wr();
+            if (c.z < 1e-3) c = glm::normalize(dvec3(c.x, c.y, 1e-3));
+            const auto r = compareWithTwin(*env.renderer, s, PinholeCamera::measurement(chart, c, fov, 96, 64));
+            CAPTURE(incidence);
+            CAPTURE(fov);
+            CHECK(r.allFinite);
+            CHECK(r.allNonNegative);
+            CHECK(r.compared >= 50);
+            CHECK(r.maxRelError < maxRelError);
+            worst = std::max(worst, r.maxRelError);
+        }
+    return worst;
+}
+
 }  // namespace hilite::test
