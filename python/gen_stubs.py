@@ -70,7 +70,7 @@ MEASUREMENT_TYPES = {
 }
 # Fields a row carries beyond its columns (not in results.csv's column list).
 ROW_EXTRAS = {
-    "lobe": "str", "parts": "list[Part]", "error_estimate_sizes": "str",
+    "lobe_domain": "str", "parts": "list[Part]", "error_estimate_sizes": "str",
     # --tolerance
     "predicted_error": "float", "tolerance_met": "bool", "settings": "ToleranceSettings",
     "check": "ToleranceCheck", "rounds": "int", "time_ms": "float", "startup_ms": "float",

@@ -28,14 +28,19 @@ const char* toString(Flag f) {
         case Flag::FloatOverflow: return "float_overflow";
         case Flag::FloatUnderflow: return "float_underflow";
         case Flag::PeakOnHorizon: return "peak_on_horizon";
+        case Flag::NoMirrorLobe: return "no_mirror_lobe";
+        case Flag::SaddleCut: return "saddle_cut";
     }
     return "unknown";
 }
 
+const char* toString(Lobe l) { return l == Lobe::Mirror ? "mirror" : "all"; }
+
 std::ostream& operator<<(std::ostream& os, Flag f) { return os << toString(f); }
 
 std::ostream& operator<<(std::ostream& os, const Options& o) {
-    return os << "{threshold=" << o.threshold << ", minPixelsAcross=" << o.minPixelsAcross << "}";
+    return os << "{threshold=" << o.threshold << ", minPixelsAcross=" << o.minPixelsAcross
+              << ", lobe=" << toString(o.lobe) << "}";
 }
 
 std::ostream& operator<<(std::ostream& os, const Shape& s) {
@@ -51,11 +56,14 @@ std::ostream& operator<<(std::ostream& os, const Shape& s) {
 
 bool Shape::has(Flag f) const { return flags.has(f); }
 
-bool unmeasured(const Shape& s) { return s.has(Flag::FloatOverflow) || s.has(Flag::FloatUnderflow); }
+bool unmeasured(const Shape& s) {
+    return s.has(Flag::FloatOverflow) || s.has(Flag::FloatUnderflow) || s.has(Flag::NoMirrorLobe);
+}
 
 void setUnmeasured(Shape& s, Flag why) {
     const bool over = s.has(Flag::FloatOverflow) || why == Flag::FloatOverflow;
     const bool under = s.has(Flag::FloatUnderflow) || why == Flag::FloatUnderflow;
+    const bool noLobe = s.has(Flag::NoMirrorLobe) || why == Flag::NoMirrorLobe;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (double* v : {&s.peak, &s.peak_u_deg, &s.peak_v_deg, &s.aspect, &s.eccentricity, &s.major_deg, &s.minor_deg,
                       &s.orientation_deg, &s.centroid_u_deg, &s.centroid_v_deg, &s.fwhm_u_deg, &s.fwhm_v_deg,
@@ -69,6 +77,7 @@ void setUnmeasured(Shape& s, Flag why) {
     s.flags = FlagSet{};
     if (over) s.flags.insert(Flag::FloatOverflow);
     if (under) s.flags.insert(Flag::FloatUnderflow);
+    if (noLobe) s.flags.insert(Flag::NoMirrorLobe);
 }
 
 void validate(const Options& opt) {

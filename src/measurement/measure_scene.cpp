@@ -10,6 +10,7 @@
 #include "measurement/diagnose.hpp"
 #include "measurement/framing.hpp"
 #include "measurement/lobe_survey.hpp"
+#include "measurement/mirror_lobe.hpp"
 #include "measurement/peak_frame.hpp"
 #include "render/cpu_view.hpp"
 
@@ -118,6 +119,7 @@ struct PartAim {
     int part = 0;
     double level = 0;
     const std::vector<CountedView>* counted = nullptr;  ///< the views of the parts measured before this one
+    const MirrorLobe* mirror = nullptr;                 ///< lobe = mirror: keep that lobe's pixels instead
 };
 
 void keepPart(ImageF& img, const PinholeCamera& cam, const PartAim& part);  // below
@@ -245,7 +247,46 @@ bool aimResolves(const LobeWidths& widths, const MeasureSetup& setup, const Fram
     return !(minor > 0) || 2.0 * minor >= 2.0 * pitch;
 }
 
+/// lobe = mirror: the pixels outside the lobe's mask (MirrorLobe::holds) set to 0, then every component of
+/// {L >= level} (4-connected; the level 0.1% lower, as keepPart's) but the one nearest the lobe's peak.
+void keepMirror(ImageF& img, const PartAim& part) {
+    const int W = img.width, H = img.height;
+    const size_t n = size_t(W) * size_t(H);
+    const double level = part.level * (1.0 - 1e-3);
+    const dvec2 peak = part.mirror->peakUV;
+    size_t nearest = n;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < n; ++i) {
+        float* q = &img.data[4 * i];
+        if (!part.mirror->holds(q[1], q[2], q[0])) q[0] = 0.f;
+        if (!(double(q[0]) >= level)) continue;
+        const double d = glm::length(dvec2(q[1], q[2]) - peak);
+        if (d < best) best = d, nearest = i;
+    }
+    if (nearest == n) return;
+    const size_t brightest = nearest;
+    thread_local std::vector<char> seen;
+    thread_local std::vector<size_t> stack;
+    seen.assign(n, 0);
+    stack.assign(1, brightest);
+    seen[brightest] = 1;
+    while (!stack.empty()) {
+        const size_t i = stack.back();
+        stack.pop_back();
+        const int x = int(i % size_t(W)), y = int(i / size_t(W));
+        const auto visit = [&](int nx, int ny) {
+            if (nx < 0 || ny < 0 || nx >= W || ny >= H) return;
+            const size_t j = size_t(ny) * size_t(W) + size_t(nx);
+            if (!seen[j] && double(img.data[4 * j]) >= level) seen[j] = 1, stack.push_back(j);
+        };
+        visit(x - 1, y), visit(x + 1, y), visit(x, y - 1), visit(x, y + 1);
+    }
+    for (size_t i = 0; i < n; ++i)
+        if (!seen[i] && double(img.data[4 * i]) >= level) img.data[4 * i] = 0.f;
+}
+
 void keepPart(ImageF& img, const PinholeCamera& cam, const PartAim& part) {
+    if (part.mirror) return keepMirror(img, part);
     // Image components of {L >= level} (4-connected; the level 0.1% lower so that each component holds all of
     // its part's pixels however the float peak differs from the twin's), each owned by the survey part its
     // brightest pixel lies in (the first in row order where several tie); the pixels of components owned by
@@ -426,12 +467,9 @@ std::optional<LobeSurvey> surveyFor(const render::Scene& scene, double threshold
 /// A peak on the horizon: the widths along the chart lines through it that leave the visible hemisphere on
 /// both sides there are not the lobe's (0 in the limit; a pixel centre 0.01 deg above the horizon gave 33.7 deg
 /// along an image column): null, flagged peak_on_horizon. The line that climbs into the region keeps its width.
-void flagPeakOnHorizon(const render::Scene& scene, const std::optional<LobeSurvey>& survey, analysis::Shape& shape) {
-    if (!survey || !survey->peakOnHorizon || survey->unbounded || analysis::unmeasured(shape) ||
-        shape.has(analysis::Flag::NoHighlight))
-        return;
+void flagPeakOnHorizonAt(const render::Scene& scene, dvec2 p, analysis::Shape& shape) {
+    if (analysis::unmeasured(shape) || shape.has(analysis::Flag::NoHighlight)) return;
     const MirrorChart chart = scene.light.chart();
-    const dvec2 p = survey->peakUV;
     // 1e-3 rad along the line: far past the peak's height above the horizon (the climb ends within ~1e-10 rad
     // of it), near enough that the line has not curved back up.
     const double e = 1e-3;
@@ -442,6 +480,10 @@ void flagPeakOnHorizon(const render::Scene& scene, const std::optional<LobeSurve
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (leaves({1, 0})) shape.fwhm_u_deg = nan, shape.flags.insert(analysis::Flag::PeakOnHorizon);
     if (leaves({0, 1})) shape.fwhm_v_deg = nan, shape.flags.insert(analysis::Flag::PeakOnHorizon);
+}
+
+void flagPeakOnHorizon(const render::Scene& scene, const std::optional<LobeSurvey>& survey, analysis::Shape& shape) {
+    if (survey && survey->peakOnHorizon && !survey->unbounded) flagPeakOnHorizonAt(scene, survey->peakUV, shape);
 }
 
 /// The region's level where no pixel centre reaches the peak: a peak on the horizon is the lobe's limit there,
@@ -456,10 +498,71 @@ void flagUnbounded(const std::optional<LobeSurvey>& survey, analysis::Shape& sha
     if (survey && survey->unbounded) shape.flags.insert(analysis::Flag::UnboundedAtHorizon);
 }
 
+/// lobe = mirror and no lobe holds the mirror direction: a named diagnosis, no numbers (or no_highlight where the
+/// scene has no lobe anywhere).
+analysis::Shape mirrorNotFound(const render::Scene& scene, const MeasureSetup& setup, Path path) {
+    analysis::Shape shape;
+    const MirrorLobe& lobe = findMirrorLobe(scene, setup.options.threshold);
+    const bool elsewhere = lobe.peak > 0 || surveyLobe(scene, setup.options.threshold).peak > 0;
+    if (elsewhere) {
+        analysis::setUnmeasured(shape, analysis::Flag::NoMirrorLobe);
+        return shape;
+    }
+    shape.flags.insert(analysis::Flag::NoHighlight);
+    shape.components = 0;
+    diagnose(scene, setup.options.threshold, path, shape);  // a delta lobe: mirror, not no_highlight
+    return shape;
+}
+
+/// lobe = mirror (mirror_lobe.hpp): the lobe framed from its rays, every render masked to it (keepMirror).
+Measurement measureMirror(const ViewFn& view, Path path, const render::Scene& scene, const MeasureSetup& setup) {
+    const double frac = setup.options.threshold;
+    const MirrorLobe& lobe = findMirrorLobe(scene, frac);
+    const MirrorChart chart = scene.light.chart();
+    Measurement m;
+    m.framing = setup.fovDeg > 0 ? "fixed (mirror lobe)" : "automatic (mirror lobe)";
+    Frame frame{liftAboveHorizon(chart.wr()), setup.fovDeg};
+    m.fovDeg = frame.fovDeg;
+    m.center = frame.center;
+    if (!lobe.found) {
+        m.shape = mirrorNotFound(scene, setup, path);
+        return m;
+    }
+    PartAim part{&scene, nullptr, 0, lobe.level, nullptr, &lobe};
+    Aim aim;
+    if (setup.fovDeg <= 0) {
+        double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+        lobe.box(u0, u1, v0, v1);
+        const double half = 0.5 * std::max(u1 - u0, v1 - v0);
+        frame = {
+            liftAboveHorizon(chart.direction(0.5 * (u0 + u1), 0.5 * (v0 + v1))),
+            std::clamp(2.0 * rad2deg(std::atan(std::tan(std::min(half, 1.3)) / setup.fill)), kMinFovDeg, kMaxFovDeg)};
+        aim = aimFrame(view, scene, setup, frame, m, &part);
+    }
+    const LobeWidths widths = twinLobeWidths(scene, frac);
+    const PinholeCamera cam = measurementCamera(scene, frame.center, frame.fovDeg, setup.width, setup.height);
+    const PixelRect crop = setup.crop && aim.good && aimResolves(widths, setup, frame) ? cropOf(aim, cam) : PixelRect{};
+    const double level = lobe.peakOnHorizon ? lobe.level : 0.0;  // no pixel centre reaches a horizon peak
+    m.shape = analyse(view, cam, crop, setup, m, &part, level);
+    if (!crop.empty() && m.shape.has(analysis::Flag::Clipped))
+        m.shape = analyse(view, cam, PixelRect{}, setup, m, &part, level);
+    diagnose(scene, frac, path, m.shape, &widths);
+    if (lobe.saddleCut && !analysis::unmeasured(m.shape)) m.shape.flags.insert(analysis::Flag::SaddleCut);
+    if (lobe.peakOnHorizon) flagPeakOnHorizonAt(scene, lobe.peakUV, m.shape);
+    if (analysis::unmeasured(m.shape))
+        analysis::setUnmeasured(m.shape, m.shape.has(analysis::Flag::FloatOverflow) ? analysis::Flag::FloatOverflow
+                                                                                    : analysis::Flag::FloatUnderflow);
+    if (m.shape.has(analysis::Flag::NoHighlight)) m.shape.components = 0;
+    m.fovDeg = frame.fovDeg;
+    m.center = frame.center;
+    return m;
+}
+
 Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scene, const MeasureSetup& setup) {
     if (setup.supersample < 1 || setup.supersample > kMaxSupersample)
         throw InputError("--supersample: must be a whole number in [1, " + std::to_string(kMaxSupersample) + "] (got " +
                          std::to_string(setup.supersample) + ")");
+    if (setup.options.lobe == analysis::Lobe::Mirror) return measureMirror(view, path, scene, setup);
     const std::optional<LobeSurvey> survey = surveyFor(scene, setup.options.threshold);
     if (survey && !survey->unbounded && survey->parts.size() > 1 && setup.fovDeg <= 0) {
         Measurement m = measureParts(view, scene, setup, *survey);
@@ -504,10 +607,13 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
 }  // namespace
 
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup) {
+    const bool mirror = setup.options.lobe == analysis::Lobe::Mirror;
+    if (mirror) render::requireTwin(scene, "--lobe mirror");
     // No CPU twin (a .brdf file): framed from coarse renders alone, error from resolution convergence.
     if (!render::hasTwin(scene)) return measureBlind(renderer, scene, setup);
     // A peak far from the mirror direction (retroreflection): framed and measured about the peak.
-    if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureGl(renderer, *framed, setup);
+    if (const auto framed = mirror ? std::nullopt : frameAboutPeak(scene, setup.options.threshold))
+        return measureGl(renderer, *framed, setup);
     return measureWith(
         [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img,
             const std::function<void()>& whileDrawing) {
@@ -517,7 +623,9 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
 }
 
 Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup) {
-    if (const auto framed = frameAboutPeak(scene, setup.options.threshold)) return measureCpu(*framed, setup);
+    const bool mirror = setup.options.lobe == analysis::Lobe::Mirror;
+    if (const auto framed = mirror ? std::nullopt : frameAboutPeak(scene, setup.options.threshold))
+        return measureCpu(*framed, setup);
     return measureWith(
         [&](const PinholeCamera& cam, dvec2 jitter, const PixelRect& crop, ImageF& img,
             const std::function<void()>& whileDrawing) {
@@ -533,8 +641,45 @@ Measurement measure(render::Renderer* renderer, const render::Scene& scene, cons
     return measureAny(*renderer, scene, setup);  // bump fields go through measureBumps
 }
 
+namespace {
+
+/// lobe = mirror: the polar contour about the lobe's peak, of the twin masked as the pixels are (mirror_lobe.hpp).
+Measurement measureMirrorReference(const render::Scene& scene, const analysis::Options& options) {
+    Measurement m;
+    m.framing = "reference (mirror lobe)";
+    const auto t0 = Clock::now();
+    const MirrorLobe& lobe = findMirrorLobe(scene, options.threshold);
+    if (!lobe.found) {
+        MeasureSetup setup;
+        setup.options = options;
+        m.shape = mirrorNotFound(scene, setup, Path::Reference);
+        m.measure_ms = msSince(t0);
+        return m;
+    }
+    const analysis::LobeFunction f = twinLobe(scene);
+    const auto mask = std::make_shared<const MirrorLobe>(lobe);
+    analysis::LobeFunction masked;
+    masked.lobe = [f, mask](double u, double v) {
+        const double L = f.lobe(u, v);
+        return mask->holds(u, v, L) ? L : 0.0;
+    };
+    masked.visible = f.visible;
+    double radius = 0;
+    for (int k = 0; k < kMirrorLobeRays; ++k)
+        radius = std::max(radius, mask->maskRadius(2.0 * kPi * k / kMirrorLobeRays));
+    m.shape = analysis::measureReference(masked, options, std::min(radius, kPi), lobe.peakUV.x, lobe.peakUV.y);
+    diagnose(scene, options.threshold, Path::Reference, m.shape);
+    if (lobe.saddleCut && !analysis::unmeasured(m.shape)) m.shape.flags.insert(analysis::Flag::SaddleCut);
+    if (lobe.peakOnHorizon) flagPeakOnHorizonAt(scene, lobe.peakUV, m.shape);
+    m.measure_ms = msSince(t0);
+    return m;
+}
+
+}  // namespace
+
 Measurement measureReference(const render::Scene& scene, const analysis::Options& options) {
     render::requireTwin(scene, "--reference");
+    if (options.lobe == analysis::Lobe::Mirror) return measureMirrorReference(scene, options);
     if (const auto framed = frameAboutPeak(scene, options.threshold)) return measureReference(*framed, options);
     Measurement m;
     m.framing = "reference";

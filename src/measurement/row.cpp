@@ -190,7 +190,9 @@ Result resultOf(const scene::Resolved& r, const Measurement& m, int width, int h
                                     : 1.0,  // a sphere above the plane is wholly above every point's horizon
                                 method == "reference" ? std::nullopt : std::optional(render::lightRule(s).error)};
     // a highlight far from the mirror direction is measured about its peak
-    out.framedAbout = framedAbout(s, r.setup.options.threshold, out.peakOffsetDeg);
+    // (the mirror lobe is measured in the mirror direction's chart, about whatever peak it has)
+    if (r.setup.options.lobe == analysis::Lobe::Mirror) out.framedAbout = "mirror direction", out.peakOffsetDeg = 0;
+    else out.framedAbout = framedAbout(s, r.setup.options.threshold, out.peakOffsetDeg);
     if (s.surface.bumps) out.micro = microFields(s, m, r.setup.options.threshold, width, height);
     return out;
 }
@@ -214,9 +216,9 @@ json toJson(const Result& res) {
     if (s.brdf.model == brdf::Model::Tabulated && s.brdf.ndfTable && !s.brdfFile)
         j["ndf_table_normalization"] = s.brdf.ndfTable->normalization;
     // Under a point light each point of the plane has its own wi: the measured lobe is the eye's view.
-    j["lobe"] = !s.light.distant() ? "as seen by the eye at distance " + std::to_string(s.eyeDistance) + " (" +
-                                         render::toString(s.light.type) + " light)"
-                                   : std::string("exitant directions (distant light)");
+    j["lobe_domain"] = !s.light.distant() ? "as seen by the eye at distance " + std::to_string(s.eyeDistance) + " (" +
+                                                render::toString(s.light.type) + " light)"
+                                          : std::string("exitant directions (distant light)");
     j["method"] = method;
     if (res.light) {
         j["light_visible"] = res.light->visible;

@@ -171,6 +171,7 @@ constexpr Named<bool> kBumps[] = {{false, "none"}, {true, "explicit"}};
 constexpr Named<bool> kBoundaries[] = {{true, "subpixel"}, {false, "pixel"}};
 constexpr Named<bool> kRenderers[] = {{false, "gl"}, {true, "cpu"}};
 constexpr Named<bool> kCrops[] = {{true, "on"}, {false, "off"}};
+constexpr Named<analysis::Lobe> kLobes[] = {{analysis::Lobe::All, "all"}, {analysis::Lobe::Mirror, "mirror"}};
 
 std::string sizeText(int w, int h) { return w == h ? std::to_string(w) : std::to_string(w) + "x" + std::to_string(h); }
 
@@ -984,6 +985,26 @@ std::vector<Param> build() {
          [](const Resolved& r) -> json { return r.setup.options.threshold; }});
     bind(
         p.back(), [](auto& r) -> auto& { return r.setup.options.threshold; });
+    add({"lobe",
+         T::Measurement,
+         K::Choice,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
+         "all (the region at threshold x the global peak, every part of it) | mirror (the lobe around the mirror "
+         "direction: the maximum a climb from the mirror direction reaches, and the part of its region at threshold x "
+         "that maximum that holds it, ended at a valley where the radiance rises again towards a brighter part; "
+         "no_mirror_lobe where that region leaves the mirror direction out; needs the CPU twin)",
+         "every measurement",
+         nullptr,
+         "lobe",
+         [](const Resolved& r) -> json { return analysis::toString(r.setup.options.lobe); }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.setup.options.lobe; }, kLobes);
     add({"min_pixels",
          T::Measurement,
          K::Integer,

@@ -32,7 +32,7 @@ namespace {
 constexpr Name kBrdf{"brdf"}, kBumpFilter{"bump_filter"}, kBumps{"bumps"}, kDiffuse{"diffuse"}, kElevation{"elevation"},
     kEta{"eta"}, kF0{"f0"}, kFov{"fov"}, kFresnel{"fresnel"}, kGpu{"gpu"}, kIncidence{"incidence"}, kK{"k"},
     kLight{"light"}, kLightRadius{"light_radius"}, kMaterial{"material"}, kMeasured{"measured"}, kModel{"model"},
-    kMultiscatter{"multiscatter"}, kNdfTable{"ndf_table"}, kParam{"param"}, kRenderer{"renderer"},
+    kMultiscatter{"multiscatter"}, kNdfTable{"ndf_table"}, kParam{"param"}, kRenderer{"renderer"}, kLobe{"lobe"},
     kRoughness{"roughness"}, kRoughnessY{"roughness_y"}, kSize{"size"}, kSupersample{"supersample"},
     kTolerance{"tolerance"};
 
@@ -354,6 +354,12 @@ void checkMeasurement(const Reader& in, const Resolved& r) {
         throw InputError(
             "--reference: no CPU twin for a .brdf file (hilite cannot run its GLSL on the CPU); the GL "
             "measurement reports error_estimate from resolution convergence instead");
+    if (r.setup.options.lobe == analysis::Lobe::Mirror && scene.brdfFile)
+        throw InputError(
+            in.where(kLobe) +
+            " mirror: needs the CPU twin to find the lobe, which a .brdf file does not have (use --lobe all)");
+    if (r.setup.options.lobe == analysis::Lobe::Mirror && scene.surface.bumps)
+        throw InputError(in.where(kLobe) + " mirror: not with --bumps explicit (a bump field is measured whole)");
     if (r.tolerance > 0 && r.reference)
         throw InputError(in.where(kTolerance) + ": not with --reference (the reference has no settings to choose)");
     if (scene.brdfFile && r.setup.cpu)

@@ -89,6 +89,7 @@ TEST_CASE("scene::sceneKey and energyKey: every registry parameter changes them,
         {"gl_backend", "osmesa", {}},
         {"shader_timeout", "5", {}},
         {"threshold", "0.4", {}},
+        {"lobe", "mirror", {}},
         {"min_pixels", "4", {}},
         {"boundary", "pixel", {}},
         {"supersample", "2", {}},
@@ -100,9 +101,9 @@ TEST_CASE("scene::sceneKey and energyKey: every registry parameter changes them,
     // Not resolved here: --measured needs a 33 MB MERL file (its key is checked below on a table made in memory);
     // --gpu needs an EGL device (it picks the device, a setting of the run, not of the scene).
     const std::set<std::string> untested = {"measured", "gpu"};
-    const std::set<std::string> notInScene = {"size",     "fov",       "view",       "elevation", "gl_backend",
-                                              "gpu",      "threshold", "min_pixels", "boundary",  "supersample",
-                                              "renderer", "crop",      "aim_size",   "reference", "shader_timeout"};
+    const std::set<std::string> notInScene = {
+        "size",       "fov",      "view",        "elevation", "gl_backend", "lobe",     "gpu",       "threshold",
+        "min_pixels", "boundary", "supersample", "renderer",  "crop",       "aim_size", "reference", "shader_timeout"};
     // The energy tables are the specular lobe's albedo (brdf::Params alone): not the light, the view, the bumps or
     // the measurement; not the diffuse albedo or sigma (brdf/energy.cpp makeEs sets the diffuse term aside); a
     // .brdf file replaces the built-in BRDF and takes none.

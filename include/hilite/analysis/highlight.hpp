@@ -52,6 +52,14 @@ enum class Flag {
     /// property of the lobe (0 in the limit, and any pixel's offset from the horizon changes it by degrees), so it
     /// is null; the region's ellipse (aspect, axes, area, centroid) is measured as usual
     PeakOnHorizon,
+    /// lobe = mirror: no lobe holds the mirror direction. The climb from the mirror direction ends at a maximum
+    /// (or on the horizon) whose region at threshold x its value leaves the mirror direction out, or the region
+    /// reaches the threshold on no ray (a flat radiance); the shape fields are not measured (NaN, null in rows)
+    NoMirrorLobe,
+    /// lobe = mirror: on some rays from the peak the radiance falls to a valley and rises again (towards a
+    /// brighter part: the strip above the horizon) before it reaches the threshold; there the region ends at the
+    /// valley's floor
+    SaddleCut,
 };
 
 /// "clipped", "horizon_cut", "under_resolved", "no_highlight", "covers_frame", "mirror",
@@ -84,8 +92,18 @@ private:
     std::vector<Flag> m_flags;
 };
 
+/// Which highlight is measured (measurement.lobe, --lobe).
+enum class Lobe {
+    All,     ///< the region {L >= threshold * global peak}, every part of it (../shared/notes/measurement.md)
+    Mirror,  ///< the lobe around the mirror direction: docs/measurement.md, "The lobe around the mirror direction"
+};
+/// "all", "mirror".
+const char* toString(Lobe);
+
 struct Options {
     double threshold = 0.5;   ///< frac: region = L >= threshold * peak, in (0, 1)
+    Lobe lobe = Lobe::All;    ///< which highlight; measureImage and the analytic references measure what they are
+                              ///< given (the measurement layer masks the mirror lobe's rivals before)
     int minPixelsAcross = 8;  ///< under-resolved below this many pixels across the minor axis (full width 2*minor)
     /// measureImage only. true: a pixel the contour crosses counts with its covered fraction, estimated from
     /// a straight contour through the pixel located by linear interpolation of L (errors O(pixel^2)).
@@ -144,9 +162,11 @@ struct Shape {
 };
 std::ostream& operator<<(std::ostream&, const Shape&);
 
-/// Whether the shape carries a flag that leaves its numbers unmeasured (float_overflow, float_underflow).
+/// Whether the shape carries a flag that leaves its numbers unmeasured (float_overflow, float_underflow,
+/// no_mirror_lobe).
 bool unmeasured(const Shape& s);
-/// Marks the shape's numbers as not measured under `why` (float_overflow or float_underflow): every number NaN
+/// Marks the shape's numbers as not measured under `why` (float_overflow, float_underflow, no_mirror_lobe): every
+/// number NaN
 /// (null in a row, "-" in a table), no parts, components 0, and the flags that described the numbers
 /// (no_highlight, under_resolved, clipped, ...) dropped, so a row cannot read as a clean measurement.
 void setUnmeasured(Shape& s, Flag why);
