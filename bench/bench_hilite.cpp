@@ -7,6 +7,7 @@
 //   --benchmark_filter=Sweep                configurations per second (the 90 x 4 sweep's measurements)
 //   --benchmark_filter=View                 GL float path against the CPU double path, same pixels, all cores
 //   --benchmark_filter=Session              the library route of the Python module: Values -> resolve -> Session
+//   --benchmark_filter=MeasureMaterial      a real RGL .bsdf material against analytic GGX, 512^2 (target: within 3x)
 
 #include "brdf/merl.hpp"
 #include "brdf/spectral.hpp"
@@ -288,6 +289,50 @@ void BM_SessionSweep86(benchmark::State& state) {
     state.counters["rows/s"] = benchmark::Counter(86.0 * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SessionSweep86)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// One 512^2 measurement of a real RGL material (cc_ibiza_sunset, a glossy film, from ../shared/data/measured) against
+/// the analytic GGX 0.2 + Smith + Schlick lobe, at 40 deg, through the Session (what `hilite measure` runs), warm.
+/// Arg 0: 0 GGX, 1 the .bsdf file; arg 1: 0 lobe all, 1 lobe mirror; arg 2: 0 the measurement (measureGl), 1 the
+/// row hilite measure prints (Session::measureOne, with table_error for the file).
+void BM_MeasureMaterial(benchmark::State& state) {
+    const std::string file = std::string(HILITE_SOURCE_DIR_STR) + "/../shared/data/measured/cc_ibiza_sunset_rgb.bsdf";
+    scene::Values v;
+    if (state.range(0)) {
+        if (!std::filesystem::exists(file)) {
+            state.SkipWithError(
+                ("missing " + file + " (the RGL files are not part of the project; see README)").c_str());
+            return;
+        }
+        v.set("measured", file);
+    } else {
+        for (auto [name, text] : {std::pair{"model", "ggx"},
+                                  {"roughness", "0.2"},
+                                  {"geometry", "smith"},
+                                  {"fresnel", "schlick"},
+                                  {"f0", "0.04"}})
+            v.set(name, text);
+    }
+    v.set("incidence", "40");
+    v.set("size", "512");
+    v.set("lobe", state.range(1) ? "mirror" : "all");
+    const std::string label = std::string(state.range(0) ? "rgl cc_ibiza_sunset" : "ggx 0.2") +
+                              (state.range(1) ? ", lobe mirror" : ", lobe all");
+    const scene::Resolved r = scene::resolve(v);
+    if (state.range(2)) {  // the whole row: resolve, measure, and a measured material's table_error
+        measurement::Session session;
+        measurement::Result row = session.measureOne(r);  // warm-up: context, compile, upload, survey
+        for (auto _ : state) row = session.measureOne(scene::resolve(v));
+        state.counters["renders"] = row.measurement.renders;
+        state.SetLabel(label + ", the row (table_error: 3 more measurements)");
+        return;
+    }
+    measurement::Measurement m = measurement::measureGl(*env().renderer, r.scene, r.setup);  // warm-up
+    for (auto _ : state) m = measurement::measureGl(*env().renderer, r.scene, r.setup);
+    state.counters["renders"] = m.renders;
+    state.SetLabel(label);
+}
+BENCHMARK(BM_MeasureMaterial)->ArgsProduct({{0, 1}, {0, 1}, {0}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MeasureMaterial)->ArgsProduct({{0, 1}, {0}, {1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// `hilite fit`'s default job: phong, blinn, beckmann and ggx fitted to a GGX 0.1 MERL table over 18 angles
 /// (0:85:5) x 5 thresholds at 256^2 (the target: under 30 s). One iteration: a fit is seconds long.
