@@ -1,5 +1,6 @@
 #include "brdf/ndf_table.hpp"
 
+#include "brdf/rgl.hpp"
 #include "core/csv.hpp"
 
 #include "core/files.hpp"
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -115,6 +117,41 @@ std::shared_ptr<const NdfTable> parseNdfTable(const std::string& text, const std
 
 std::shared_ptr<const NdfTable> loadNdfTable(const std::string& path) {
     return parseNdfTable(readInputFile(path, "--ndf-table"), path);
+}
+
+bool isRglNdfFile(const std::string& path) { return rgl::fileIsTensorFile(path); }
+
+std::shared_ptr<const NdfTable> rglNdfTable(const std::string& path, const std::string& what) {
+    const std::shared_ptr<const rgl::Material> m = rgl::load(path, what);
+    const rgl::ParamWeight none;
+    constexpr int kRows = 512, kPhi = 128;
+    // The mean over phi of a table bilinear in (x, phi): sampled at kPhi azimuths (exact for the nodes' linear
+    // pieces when kPhi is a multiple of the intervals; the files have 2-64 phi nodes).
+    const auto meanOverPhi = [&](std::size_t first, int nx, int ny, double x) {
+        double sum = 0;
+        for (int j = 0; j < kPhi; ++j) sum += m->grid(first, nx, ny, {x, (j + 0.5) / kPhi}, none, none, 0);
+        return sum / kPhi;
+    };
+    std::string csv;
+    char line[96];
+    for (int k = 0; k < kRows; ++k) {
+        const double u = double(k) / (kRows - 1), theta = 0.5 * kPi * u * u;
+        const double d = meanOverPhi(m->at.ndfAt, m->at.ndfX, m->at.ndfY, u);
+        std::snprintf(line, sizeof line, "%.17g, %.17g\n", k == kRows - 1 ? 90.0 : rad2deg(theta), std::max(d, 0.0));
+        csv += line;
+    }
+    auto t = std::make_shared<NdfTable>(*parseNdfTable(csv, path));
+    t->fromRgl = true;
+    for (int k = 0; k < NdfTable::kLambdaRows; ++k) {
+        const double thetaO = deg2rad(90.0 * k / (NdfTable::kLambdaRows - 1));
+        const double sigma =
+            t->normalization * meanOverPhi(m->at.sigmaAt, m->at.sigmaX, m->at.sigmaY, rgl::thetaToU(thetaO));
+        if (90.0 * k / (NdfTable::kLambdaRows - 1) <= 80.0)
+            t->projectedAreaMismatch =
+                std::max(t->projectedAreaMismatch, std::abs(sigma / t->projectedArea[size_t(k)] - 1.0));
+        t->projectedArea[size_t(k)] = sigma;
+    }
+    return t;
 }
 
 double D_Tabulated(double NoH, double sin2h, const NdfTable& t) {

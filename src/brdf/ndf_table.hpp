@@ -27,6 +27,10 @@ struct NdfTable {
     double halfWidth = 0.0;      ///< theta_h (radians) where D first falls to half its largest value
     /// (1 + Lambda) cos(theta_o) = int max(0, w.m) D dm at theta_o = k * 90 / (kLambdaRows - 1) degrees.
     std::vector<double> projectedArea;
+    /// An RGL file's NDF (rglNdfTable): projectedArea is the file's own sigma table (x normalization), and this
+    /// is its largest relative difference from the integral above over theta_o in [0, 80] deg (0 for a CSV).
+    double projectedAreaMismatch = 0.0;
+    bool fromRgl = false;
 
     static constexpr int kMinRows = 2;
     static constexpr int kMaxRows = 1024;   ///< GPU: rows are a uniform array, two to a vec4 (512 vec4)
@@ -37,6 +41,15 @@ struct NdfTable {
 std::shared_ptr<const NdfTable> loadNdfTable(const std::string& path);
 /// The same from text (tests, fuzzing); `name` is what errors call the file.
 std::shared_ptr<const NdfTable> parseNdfTable(const std::string& text, const std::string& name);
+
+/// The measured NDF of an RGL `.bsdf` file (Dupuy & Jakob 2018: its `ndf` table, D(wm) per steradian, bilinear in
+/// (sqrt(theta_m / (pi/2)), phi_m)) as a table: averaged over phi_m (the table is isotropic), sampled at 512 rows
+/// uniform in sqrt(theta_m) (dense where glossy lobes live), normalized as a CSV table is; and the file's `sigma`
+/// table (the measured projected area, averaged over phi) for Smith's Lambda instead of the integral of D.
+/// Throws InputError naming `what` and the file as rgl::read does.
+std::shared_ptr<const NdfTable> rglNdfTable(const std::string& path, const std::string& what = "--ndf-table");
+/// Whether the file starts as an RGL tensor file (then --ndf-table reads its NDF).
+bool isRglNdfFile(const std::string& path);
 
 /// D(theta_h) of the table: linear between rows, 0 beyond the last. theta_h from (|n x h|, n.h) by atan2.
 /// Bisection for the row: the GLSL twin does the same.

@@ -476,7 +476,9 @@ std::vector<Param> build() {
          {},
          "",
          "tabulated: CSV of 'theta_h_deg, D' rows (theta_h from 0, increasing, <= 90; D >= 0), linear between rows, "
-         "normalized so that int D (n.h) dw = 1 (the factor is reported as ndf_table_normalization)",
+         "normalized so that int D (n.h) dw = 1 (the factor is reported as ndf_table_normalization); or an RGL .bsdf "
+         "file, told apart by content: its measured NDF (averaged over phi_m) and, for Smith masking, its measured "
+         "projected area (sigma)",
          "model tabulated",
          tabulated,
          "ndf_table",

@@ -246,7 +246,9 @@ void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Pa
     if (table && p.model != brdf::Model::Tabulated)
         throw InputError(in.where(kNdfTable) + ": the table is the NDF of --model tabulated (got --model " +
                          in.text(kModel) + ")");
-    if (table) p.ndfTable = brdf::loadNdfTable(in.text(kNdfTable));
+    if (table)  // an RGL .bsdf file gives its measured NDF (and projected area), told apart by content
+        p.ndfTable = brdf::isRglNdfFile(in.text(kNdfTable)) ? brdf::rglNdfTable(in.text(kNdfTable), in.where(kNdfTable))
+                                                            : brdf::loadNdfTable(in.text(kNdfTable));
     resolveFresnel(in, p, spectralStepNm);
     if (in.given(kMeasured)) {
         // Told apart by content, not by name: an RGL file starts with "tensor_file", a MERL file with 90, 90, 180.

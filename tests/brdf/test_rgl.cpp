@@ -5,8 +5,10 @@
 #include "brdf/inspect.hpp"
 #include "brdf/integrate.hpp"
 #include "brdf/merl.hpp"
+#include "brdf/ndf_table.hpp"
 #include "brdf/rgl.hpp"
 #include "hilite/brdf/evaluate.hpp"
+#include "hilite/brdf/terms.hpp"
 #include "hilite/core/error.hpp"
 #include "support/rgl_file.hpp"
 #include "support/temp_dir.hpp"
@@ -308,4 +310,46 @@ TEST_CASE("rgl: brdf inspect reports the file, its albedo as brdf::albedo, and a
     CHECK(bestTheta > 61.0);  // off-specular: beyond the mirror direction
     CHECK(std::abs(t.incidences[0].peakThetaODeg - bestTheta) <= 0.5);
     CHECK(t.incidences[0].peakOffsetDeg == doctest::Approx(t.incidences[0].peakThetaODeg - 60.0).epsilon(1e-6));
+}
+
+TEST_CASE("rgl: --ndf-table FILE.bsdf, a file's measured NDF as a table - GGX 0.2 sampled as the files are") {
+    hilite_test::TempDir dir("hilite-rgl-ndf");
+    const std::string file = dir / "ggx.bsdf";
+    std::ofstream(file, std::ios::binary) << hilite_test::tensorFile(hilite_test::syntheticGgxNdf(0.2));
+    REQUIRE(brdf::isRglNdfFile(file));
+    const auto t = brdf::rglNdfTable(file);
+    CHECK(t->fromRgl);
+    // The nodes' GGX integrates to 1 up to the table's linear pieces: the factor says how far.
+    CHECK(t->normalization == doctest::Approx(1.0).epsilon(2e-3));
+    for (double deg : {0.0, 2.0, 5.0, 11.3, 20.0, 40.0}) {
+        CAPTURE(deg);
+        const double h = deg2rad(deg), c = std::cos(h), s2 = std::sin(h) * std::sin(h);
+        CHECK(brdf::D_Tabulated(c, s2, *t) == doctest::Approx(brdf::D_GGX(c, s2, 0.2)).epsilon(5e-3));
+    }
+    // Smith's Lambda from the file's sigma is GGX's, and the integral of the table's D agrees with it.
+    for (double deg : {0.0, 30.0, 60.0, 80.0}) {
+        CAPTURE(deg);
+        const double c = std::cos(deg2rad(deg)), t2 = std::pow(std::tan(deg2rad(deg)), 2);
+        CHECK(brdf::Lambda_Tabulated(c, *t) ==
+              doctest::Approx(0.5 * (-1.0 + std::sqrt(1.0 + 0.04 * t2))).epsilon(3e-3));
+    }
+    CHECK(t->projectedAreaMismatch < 3e-3);
+}
+
+TEST_CASE("rgl: the real files' NDFs integrate to 1 and their sigma tables are the integrals of their NDFs") {
+    const std::string dir = hilite_test::sharedMeasured();
+    for (const char* name : {"cc_ibiza_sunset_rgb.bsdf", "cg_sunflower_rgb.bsdf", "paper_white_rgb.bsdf"}) {
+        const std::string file = dir + "/" + name;
+        if (!std::filesystem::exists(file)) {
+            MESSAGE("skipped: " << file << " is missing (the RGL files are not part of the project; see README)");
+            continue;
+        }
+        CAPTURE(file);
+        const auto t = brdf::rglNdfTable(file);
+        MESSAGE(std::string(name) << ": NDF normalization " << t->normalization << ", half-width "
+                                  << rad2deg(t->halfWidth)
+                                  << " deg, sigma against the integral of D: " << t->projectedAreaMismatch);
+        CHECK(t->normalization == doctest::Approx(1.0).epsilon(0.02));
+        CHECK(t->projectedAreaMismatch < 0.015);
+    }
 }

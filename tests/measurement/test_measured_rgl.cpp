@@ -112,3 +112,26 @@ TEST_CASE("measured rgl: bad files are refused in one line naming --measured and
     const std::string why = measureRefusal(flags("--measured " + t.file + " --model ggx"));
     CHECK(why.find("--model: not with --measured") != std::string::npos);
 }
+
+TEST_CASE("measured rgl: --ndf-table FILE.bsdf measures as the microfacet model whose NDF the file holds") {
+    // A file holding GGX 0.2's NDF and projected area: the tabulated model built from it is GGX 0.2.
+    hilite_test::TempDir dir("hilite-rgl-ndf-measure");
+    const std::string file = dir / "ggx-ndf.bsdf";
+    std::ofstream(file, std::ios::binary) << hilite_test::tensorFile(hilite_test::syntheticGgxNdf(0.2));
+    const std::string terms = " --geometry smith --fresnel schlick --f0 0.04 --incidence 0,30,60 --reference";
+    const auto table = measureJson(flags("--model tabulated --ndf-table " + file + terms));
+    const auto ggx = measureJson(flags("--model ggx --roughness 0.2" + terms));
+    for (size_t i = 0; i < table.size(); ++i) {
+        CAPTURE(i);
+        CHECK(table[i]["aspect"].get<double>() == doctest::Approx(ggx[i]["aspect"].get<double>()).epsilon(3e-3));
+        CHECK(table[i]["major_deg"].get<double>() == doctest::Approx(ggx[i]["major_deg"].get<double>()).epsilon(3e-3));
+        CHECK(table[i]["ndf_table_normalization"].get<double>() == doctest::Approx(1.0).epsilon(2e-3));
+    }
+    // A damaged file is refused in one line naming the flag.
+    const std::string bad = dir / "truncated.bsdf";
+    const std::string bytes = hilite_test::tensorFile(hilite_test::syntheticGgxNdf(0.2));
+    std::ofstream(bad, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    const std::string why = refusal(flags("--model tabulated --ndf-table " + bad));
+    CHECK(oneLine(why));
+    CHECK(why.find("--ndf-table") != std::string::npos);
+}

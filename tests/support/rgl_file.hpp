@@ -81,6 +81,29 @@ inline std::vector<TensorField> syntheticRgl(int n = 4) {
     return f;
 }
 
+/// The synthetic material with a GGX NDF of roughness `alpha` as its `ndf` table (n theta_m nodes, uniform in
+/// sqrt(theta_m / (pi/2)) as the files' are, 2 phi nodes) and GGX's exact projected area cos(theta) (1 + Lambda) as
+/// its `sigma`: the NDF a microfacet surface with that roughness would have measured.
+inline std::vector<TensorField> syntheticGgxNdf(double alpha, int n = 256) {
+    std::vector<TensorField> f = syntheticRgl();
+    std::vector<float> ndf, sigma;
+    for (int phi = 0; phi < 2; ++phi)
+        for (int k = 0; k < n; ++k) {
+            const double u = double(k) / (n - 1), theta = 0.5 * M_PI * u * u;
+            const double c = std::cos(theta), t2 = std::pow(std::tan(theta), 2), a2 = alpha * alpha;
+            const double D = k == n - 1 ? 0.0 : a2 / (M_PI * std::pow(c, 4) * std::pow(a2 + t2, 2));
+            const double lambda = k == n - 1 ? 0.0 : 0.5 * (-1.0 + std::sqrt(1.0 + a2 * t2));
+            ndf.push_back(float(D));
+            sigma.push_back(float(k == n - 1 ? 0.5 * alpha : c * (1.0 + lambda)));  // the limit at 90 deg: alpha / 2
+        }
+    for (TensorField& t : f)
+        if (t.name == "ndf" || t.name == "sigma") {
+            t.shape = {2, std::uint64_t(n)};
+            t.bytes = floatBytes(t.name == "ndf" ? ndf : sigma);
+        }
+    return f;
+}
+
 /// The field named `name` of `fields` (the test's own list: it is there).
 inline TensorField& field(std::vector<TensorField>& fields, const std::string& name) {
     for (auto& f : fields)
