@@ -245,8 +245,46 @@ void addValues(SweepAxis& axis, const toml::array& values, const std::string& fi
     }
 }
 
+/// `folder = DIR` with `own_ndf = { geometry = ..., fresnel = ..., ... }` (material keys): a case axis, column
+/// `source`, with a case per file (the measured material, named by the file's stem) and, for each RGL .bsdf, one
+/// more: the microfacet model of the file's own NDF (model tabulated, ndf_table = the file, and own_ndf's keys),
+/// named "STEM own NDF". Tags: material_file (the file's name) and variant ("measured" or "own NDF").
+SweepAxis ownNdfAxis(const Fields& f, const std::string& file, const std::string& dir,
+                     const std::vector<std::string>& names) {
+    if (!f.node("own_ndf")->is_table())
+        f.fail("own_ndf", "expected a table of material keys, e.g. { geometry = \"smith\", fresnel = \"schlick\" }");
+    toml::table wrapped;
+    wrapped.insert("material", *f.node("own_ndf")->as_table());
+    const scene::Values terms = caseValues(wrapped, file, "sweep.own_ndf", {});
+    for (const char* k : {"model", "ndf_table", "measured", "brdf"})
+        if (terms.given().count(k))
+            f.fail("own_ndf", std::string("sets ") + k + " itself (model tabulated, ndf_table)");
+    SweepAxis axis;
+    axis.key = "source";
+    const std::string origin = f.at("folder");
+    for (const std::string& n : names) {
+        const std::string path = (dir.back() == '/' ? dir : dir + "/") + n;
+        const std::string stem = fs::path(n).stem().string();
+        SweepCase measured;
+        measured.name = stem;
+        measured.values.set("measured", path, origin);
+        measured.tags = {{"material_file", n}, {"variant", "measured"}};
+        axis.cases.push_back(measured);
+        if (fs::path(n).extension() != ".bsdf") continue;
+        SweepCase own;
+        own.name = stem + " own NDF";
+        own.values = terms;
+        own.values.set("model", "tabulated", f.at("own_ndf"));
+        own.values.set("ndf_table", path, origin);
+        own.tags = {{"material_file", n}, {"variant", "own NDF"}};
+        axis.cases.push_back(own);
+    }
+    for (const auto& c : axis.cases) axis.values.push_back(c.name);
+    return axis;
+}
+
 SweepAxis parseAxis(const toml::table& t, const std::string& file) {
-    const Fields f(t, file, "sweep", {"key", "values", "range", "cases", "folder"});
+    const Fields f(t, file, "sweep", {"key", "values", "range", "cases", "folder", "own_ndf"});
     SweepAxis axis;
     const auto key = f.string("key");
     if (!key || key->empty()) f.fail("key", "needs key = \"table.key\" (a scene key, e.g. light.incidence)");
@@ -272,7 +310,12 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
         const std::string base = slash == std::string::npos ? std::string() : file.substr(0, slash + 1);
         const std::string dir = folder.front() == '/' ? folder : base + folder;
         std::error_code ec;
-        if (!fs::is_directory(dir, ec)) f.fail("folder", "'" + printable(dir) + "' is not a folder");
+        if (!fs::is_directory(dir, ec))
+            f.fail("folder",
+                   "'" + printable(dir) + "' is not a folder" +
+                       (measured ? " (hilite ships no measured data: MERL tables from https://www.merl.com/brdf/, "
+                                   "RGL .bsdf files from https://rgl.epfl.ch/materials; see README)"
+                                 : ""));
         std::vector<std::string> names;
         for (const auto& entry : fs::directory_iterator(dir, ec))
             if (const std::string ext = entry.path().extension().string();
@@ -286,6 +329,7 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
                                    "https://rgl.epfl.ch/materials)"
                                  : ""));
         const std::string origin = f.at("folder");
+        if (f.node("own_ndf")) return ownNdfAxis(f, file, dir, names);
         for (const std::string& n : names) {
             const std::string path = (dir.back() == '/' ? dir : dir + "/") + n;
             scene::Values one;
@@ -295,6 +339,7 @@ SweepAxis parseAxis(const toml::table& t, const std::string& file) {
         }
         return axis;
     }
+    if (f.node("own_ndf")) f.fail("own_ndf", "only with folder = \"DIR\" of material.measured files");
     if (f.node("range")) {
         const std::vector<double> r = f.numbers("range");
         if (r.size() != 3 || !(r[2] > 0) || r[1] < r[0])
@@ -586,7 +631,24 @@ void parseSheet(const toml::table& doc, const std::string& path, Experiment& e, 
             if (const std::string err = scene::check(*scene::find("fov"), text); !err.empty()) f.fail("fov", err);
             e.sheetFov = text;
         }
-        const SweepAxis rows = sheetAxis(f, "row_key", "material.model", "rows");
+        // rows = "sweep": the values (or cases) of the sweep over row_key, whatever a folder holds.
+        const toml::node* rowsNode = f.node("rows");
+        const bool fromSweep = rowsNode && rowsNode->is_string() && rowsNode->as_string()->get() == "sweep";
+        SweepAxis rows;
+        if (fromSweep) {
+            rows.key = f.string("row_key", "material.model");
+            const auto axis =
+                std::find_if(e.axes.begin(), e.axes.end(), [&](const SweepAxis& a) { return a.key == rows.key; });
+            if (axis == e.axes.end())
+                f.fail("rows", "\"sweep\" takes the rows from the sweep over " + rows.key + ", and none sweeps it");
+            rows.values = axis->values;
+            if (axis->cases.empty()) rows.entries = axis->entries;
+            else
+                for (const auto& c : axis->cases) rows.entries.push_back(c.values);
+            if (rows.values.size() > 64) f.fail("rows", "the sweep over " + rows.key + " has more than 64 values");
+        } else {
+            rows = sheetAxis(f, "row_key", "material.model", "rows");
+        }
         const SweepAxis cols = sheetAxis(f, "column_key", "light.incidence", "columns");
         e.sheetRowKey = rows.key, e.sheetColumnKey = cols.key;
         e.sheetRows = rows.values, e.sheetRowValues = rows.entries;

@@ -183,6 +183,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     // block of its own, drawn as open circles titled with the flags it carries.
     std::vector<std::string> order;
     std::map<std::string, std::ostringstream> blocks;
+    std::map<std::string, bool> drawn;   // the series has a point without flags
     std::map<std::string, bool> gapped;  // the series' last line is a gap: one blank line, never two (gnuplot's
                                          // block separator)
     std::ostringstream flaggedBlock;
@@ -190,8 +191,12 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     int flagged = 0;
     std::vector<double> xs;
     for (const auto& r : rows) {
-        if (!r.contains(spec.x) || !r.contains(spec.y) || r[spec.y].is_null()) continue;
+        if (!r.contains(spec.x) || !r.contains(spec.y)) continue;
         const std::string key = spec.series.empty() ? spec.y : seriesTitle(spec.series, r[spec.series]);
+        if (r[spec.y].is_null()) {  // not measured (no_mirror_lobe, float_overflow): a gap, not a line across it
+            if (blocks.count(key) && !gapped[key]) blocks[key] << "\n", gapped[key] = true;
+            continue;
+        }
         if (!blocks.count(key)) order.push_back(key);
         if (r[spec.x].is_number()) xs.push_back(r[spec.x].get<double>());
         const bool hasFlags = r.contains("flags") && r["flags"].is_array() && !r["flags"].empty();
@@ -205,9 +210,13 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
         }
         blocks[key] << r[spec.x].dump() << " " << r[spec.y].dump() << "\n";
         gapped[key] = false;
+        drawn[key] = true;
     }
     std::string data;
-    for (const auto& k : order) data += comment(k) + blocks[k].str() + (gapped[k] ? "\n" : "\n\n");
+    // A series with every row flagged has no point of its own: "NaN NaN" keeps its block (a block of blank lines
+    // alone is no block to gnuplot's index, and every later index, the flagged circles' included, would shift).
+    for (const auto& k : order)
+        data += comment(k) + (drawn[k] ? blocks[k].str() : "NaN NaN\n") + (drawn[k] && gapped[k] ? "\n" : "\n\n");
     std::string flaggedTitle;
     if (flagged) {
         for (const auto& [f, n] : flagCounts) flaggedTitle += (flaggedTitle.empty() ? "" : ", ") + f;
@@ -232,7 +241,11 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     io::writeFileAtomic(dat, data);
 
     std::ostringstream gp;
-    gp << "set terminal pngcairo size 900,600 noenhanced font 'DejaVu Sans,11'\n"
+    // Many series under the plot: a taller canvas (20 px a line past 8), so that the plot keeps its height.
+    const size_t entries = order.size() + (flagged ? 1 : 0) + curves;
+    const bool wideKey = entries > 8 && (spec.key.empty() || spec.key == "below");
+    gp << "set terminal pngcairo size 900," << (wideKey ? 600 + 20 * (entries - 8) : 600)
+       << " noenhanced font 'DejaVu Sans,11'\n"
        << "set output " << quoteGnuplot(dir + "/" + spec.file + ".tmp") << "\n"
        << "set title " << quoteGnuplot(spec.title) << "\n"
        << "set xlabel " << quoteGnuplot(spec.xlabel.empty() ? fieldLabel(spec.x) : spec.xlabel) << "\n"
@@ -251,9 +264,15 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
               "unset xtics\nunset ytics\nset grid polar 15\nset rrange [0:*]\nset ttics 0,15\n";
     gp << "plot ";
     bool first = true;
+    // Twelve colours told apart (Paul Tol's "muted" and "bright" schemes), then the same colours dashed: gnuplot's
+    // own eight repeat from the ninth series on.
+    static const char* const colours[] = {"#332288", "#88CCEE", "#44AA99", "#117733", "#999933", "#DDCC77",
+                                          "#CC6677", "#882255", "#AA4499", "#EE6677", "#4477AA", "#BBBBBB"};
+    constexpr size_t nColours = sizeof colours / sizeof colours[0];
     for (size_t i = 0; i < order.size(); ++i) {
         gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << i
-           << " using 1:2 with linespoints pt 7 ps 0.5 title " << quoteGnuplot(order[i]);
+           << " using 1:2 with linespoints pt 7 ps 0.5 lc rgb '" << colours[i % nColours] << "' dt " << 1 + i / nColours
+           << " title " << quoteGnuplot(order[i]);
         first = false;
     }
     const size_t theory0 = order.size() + (flagged ? 1 : 0);
@@ -263,8 +282,8 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
         first = false;
     }
     for (size_t i = 0; i < curves; ++i) {
-        gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << theory0 + i
-           << " using 1:2 with lines dt 2 lw 2.5 lc rgb '#303030' title " << quoteGnuplot(spec.theory[i].first);
+        gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << theory0 + i << " using 1:2 with lines dt "
+           << 2 + i << " lw 2.5 lc rgb '#303030' title " << quoteGnuplot(spec.theory[i].first);
         first = false;
     }
     if (first) gp << "NaN notitle";  // no rows with the fields: an empty frame, not a gnuplot syntax error

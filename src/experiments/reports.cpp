@@ -131,16 +131,21 @@ std::string shapeSection(const Experiment& e, const Rows& rows) {
        << " | aspect | cos | eccentricity | semi-major (deg) | semi-minor (deg) | centroid u (deg) | flags |\n"
        << "|---|---|---|---|---|---|---|---|---|\n";
     std::map<std::string, std::pair<double, double>> worst;  // series -> max |aspect-1|, max |aspect-cos|
+    std::map<std::string, int> counted;                      // series -> rows without flags at x <= 80
+    std::map<std::string, double> apart;                     // series -> max |1 - cos theta_i| over those rows
     std::vector<std::string> order;
     for (const auto& r : rows) {
-        if (!r.contains(e.summarySeries) || r["aspect"].is_null()) continue;
+        if (!r.contains(e.summarySeries)) continue;
         const std::string s =
             r[e.summarySeries].is_string() ? r[e.summarySeries].get<std::string>() : r[e.summarySeries].dump();
-        if (!worst.count(s)) order.push_back(s), worst[s] = {0, 0};
+        if (!worst.count(s)) order.push_back(s), worst[s] = {0, 0};  // listed even with no aspect (no_mirror_lobe)
+        if (r["aspect"].is_null()) continue;
         const double x = r.value(e.summaryX, 0.0), a = r["aspect"].get<double>();
         if (r["flags"].empty() && x <= 80) {
             worst[s].first = std::max(worst[s].first, std::abs(a - 1));
             worst[s].second = std::max(worst[s].second, std::abs(a - r.value("cos_incidence", 1.0)));
+            ++counted[s];
+            apart[s] = std::max(apart[s], std::abs(1.0 - r.value("cos_incidence", 1.0)));
         }
         if (std::find(e.summaryAt.begin(), e.summaryAt.end(), x) == e.summaryAt.end()) continue;
         std::string flags;
@@ -149,10 +154,23 @@ std::string shapeSection(const Experiment& e, const Rows& rows) {
            << " | " << r.value("eccentricity", 0.0) << " | " << r.value("major_deg", 0.0) << " | "
            << r.value("minor_deg", 0.0) << " | " << r.value("centroid_u_deg", 0.0) << " | " << flags << " |\n";
     }
-    md << "\nOver the rows without flags at " << e.summaryX << " <= 80:\n\n| " << e.summarySeries
-       << " | max abs(aspect - 1) | max abs(aspect - cos theta_i) |\n|---|---|---|\n";
-    for (const auto& s : order)
-        md << std::setprecision(3) << "| " << s << " | " << worst[s].first << " | " << worst[s].second << " |\n";
+    // "follows": the prediction nearer over every row, if it is within 0.1 of it everywhere (else neither), where
+    // some row tells the two apart (|1 - cos theta_i| > 0.1: theta_i > 25.8 deg).
+    md << "\nOver the rows without flags at " << e.summaryX << " <= 80 (follows: the prediction within 0.1 of the "
+       << "aspect on every such row, the nearer one if both are):\n\n| " << e.summarySeries
+       << " | rows | max abs(aspect - 1) | max abs(aspect - cos theta_i) | follows |\n|---|---|---|---|---|\n";
+    for (const auto& s : order) {
+        const auto [one, cosine] = worst[s];
+        const char* follows = !counted[s]                   ? "- (no row without flags)"
+                              : apart[s] <= 0.1             ? "- (no row tells the two apart)"
+                              : std::min(one, cosine) > 0.1 ? "neither"
+                              : cosine < one                ? "cos theta_i (microfacet)"
+                                                            : "1 (round: reflection lobe)";
+        std::ostringstream a, b;
+        a << std::setprecision(3) << one, b << std::setprecision(3) << cosine;
+        md << "| " << s << " | " << counted[s] << " | " << (counted[s] ? a.str() : "-") << " | "
+           << (counted[s] ? b.str() : "-") << " | " << follows << " |\n";
+    }
     return md.str();
 }
 
