@@ -121,8 +121,9 @@ std::shared_ptr<const NdfTable> loadNdfTable(const std::string& path) {
 
 bool isRglNdfFile(const std::string& path) { return rgl::fileIsTensorFile(path); }
 
-std::shared_ptr<const NdfTable> rglNdfTable(const std::string& path, const std::string& what) {
-    const std::shared_ptr<const rgl::Material> m = rgl::load(path, what);
+std::shared_ptr<const NdfTable> rglNdfTable(const std::string& path, const std::string& what,
+                                            const std::string& dataDir) {
+    const std::shared_ptr<const rgl::Material> m = rgl::load(path, what, dataDir);
     const rgl::ParamWeight none;
     constexpr int kRows = 512, kPhi = 128;
     // The mean over phi of a table bilinear in (x, phi): sampled at kPhi azimuths (exact for the nodes' linear

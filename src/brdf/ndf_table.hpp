@@ -47,7 +47,8 @@ std::shared_ptr<const NdfTable> parseNdfTable(const std::string& text, const std
 /// uniform in sqrt(theta_m) (dense where glossy lobes live), normalized as a CSV table is; and the file's `sigma`
 /// table (the measured projected area, averaged over phi) for Smith's Lambda instead of the integral of D.
 /// Throws InputError naming `what` and the file as rgl::read does.
-std::shared_ptr<const NdfTable> rglNdfTable(const std::string& path, const std::string& what = "--ndf-table");
+std::shared_ptr<const NdfTable> rglNdfTable(const std::string& path, const std::string& what = "--ndf-table",
+                                            const std::string& dataDir = "");
 /// Whether the file starts as an RGL tensor file (then --ndf-table reads its NDF).
 bool isRglNdfFile(const std::string& path);
 

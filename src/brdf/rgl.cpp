@@ -1,5 +1,7 @@
 #include "brdf/rgl.hpp"
 
+#include "brdf/spectral.hpp"
+
 #include "core/files.hpp"
 #include "hilite/core/error.hpp"
 
@@ -305,20 +307,17 @@ const Field* find(const std::vector<Field>& fields, const std::string& name) {
 
 }  // namespace
 
-Material parse(const std::string& bytes, const std::string& path, const std::string& what) {
+Material parse(const std::string& bytes, const std::string& path, const std::string& what, const std::string& dataDir) {
     Reader r(bytes, what + ": '" + path + "' ");
     const std::vector<Field> fields = r.fields();
+    // A spectral file (Dupuy & Jakob's "spectra" and "wavelengths" fields, no "rgb"): reduced to linear sRGB at its
+    // nodes under D65 with the CIE 1931 observer (spectral.hpp rgbWeights), then read as an RGB file.
+    const bool spectral = !find(fields, "rgb") && find(fields, "spectra");
     auto field = [&](const std::string& name, int type, const std::string& shape) -> const Field& {
         const Field* f = find(fields, name);
-        if (!f) {
-            if (name == "rgb" && find(fields, "spectra"))
-                r.fail(
-                    "is a spectral RGL file (a 'spectra' field, no 'rgb'); this version reads the RGB files of "
-                    "the database (NAME_rgb.bsdf, rgl.epfl.ch/materials)");
-            r.fail("has no field '" + name +
-                   "'; an RGL RGB file has theta_i, phi_i, ndf, sigma, vndf, luminance, "
-                   "rgb, description and jacobian");
-        }
+        if (!f)
+            r.fail("has no field '" + name + "'; an RGL file has theta_i, phi_i, ndf, sigma, vndf, luminance, " +
+                   (spectral ? "spectra, wavelengths" : "rgb") + ", description and jacobian");
         if (f->type != type)
             r.fail("field '" + name + "' is " + typeName(f->type) + "; expected " + typeName(type) + " " + shape);
         return *f;
@@ -333,7 +332,21 @@ Material parse(const std::string& bytes, const std::string& path, const std::str
     const Field& sigma = field("sigma", F32, "[phi, theta]");
     const Field& vndf = field("vndf", F32, "[phi_i, theta_i, phi, theta]");
     const Field& lum = field("luminance", F32, "[phi_i, theta_i, N, N]");
-    const Field& rgb = field("rgb", F32, "[phi_i, theta_i, 3, N, N]");
+    const Field& rgb = spectral ? field("spectra", F32, "[phi_i, theta_i, wavelengths, N, N]")
+                                : field("rgb", F32, "[phi_i, theta_i, 3, N, N]");
+    std::vector<double> lambdaNm;
+    if (spectral) {
+        const Field& wl = field("wavelengths", F32, "[wavelengths]");
+        dims(wl, 1, "[wavelengths]");
+        lambdaNm = r.values(wl);
+        for (std::size_t i = 0; i < lambdaNm.size(); ++i)
+            if (!(lambdaNm[i] >= 100 && lambdaNm[i] <= 5000) || (i > 0 && !(lambdaNm[i] > lambdaNm[i - 1])))
+                r.fail("field 'wavelengths' is not increasing within [100, 5000] nm at index " + std::to_string(i) +
+                       " (" + std::to_string(lambdaNm[i]) + ")");
+        if (lambdaNm.empty()) r.fail("field 'wavelengths' is empty");
+        if (dataDir.empty()) r.fail("is a spectral RGL file; reducing it to RGB needs hilite's colorimetry data");
+    }
+    const std::uint64_t channels = spectral ? lambdaNm.size() : 3;
     const Field& desc = field("description", U8, "[length]");
     const Field& jac = field("jacobian", U8, "[1]");
     dims(theta, 1, "[theta_i]");
@@ -357,10 +370,12 @@ Material parse(const std::string& bytes, const std::string& path, const std::str
     incidences(vndf, "[phi_i, theta_i, phi, theta]");
     incidences(lum, "[phi_i, theta_i, N, N]");
     incidences(rgb, "[phi_i, theta_i, 3, N, N]");
-    if (rgb.shape[2] != 3 || rgb.shape[3] != lum.shape[2] || rgb.shape[4] != lum.shape[3] ||
+    if (rgb.shape[2] != channels || rgb.shape[3] != lum.shape[2] || rgb.shape[4] != lum.shape[3] ||
         lum.shape[2] != lum.shape[3])
-        r.fail("field 'rgb' has shape " + shapeText(rgb.shape) + " beside luminance " + shapeText(lum.shape) +
-               "; expected [phi_i, theta_i, 3, N, N] and [phi_i, theta_i, N, N]");
+        r.fail("field '" + rgb.name + "' has shape " + shapeText(rgb.shape) + " beside luminance " +
+               shapeText(lum.shape) + "; expected [phi_i, theta_i, " +
+               (spectral ? std::to_string(channels) + " (the wavelengths)" : std::string("3")) +
+               ", N, N] and [phi_i, theta_i, N, N]");
     for (const Field* f : {&ndf, &sigma, &vndf, &rgb}) {  // a grid needs two nodes per axis (node k at k / (n - 1))
         const std::size_t d = f->shape.size();
         if (f->shape[d - 1] < 2 || f->shape[d - 2] < 2 || f->shape[d - 1] > 4096 || f->shape[d - 2] > 4096)
@@ -390,7 +405,7 @@ Material parse(const std::string& bytes, const std::string& path, const std::str
     place(at.vndfAt, vndf.count);
     place(at.cdfAt, vndf.count);
     place(at.marginalAt, std::size_t(nPhi * nTheta) * std::size_t(at.vndfY));
-    place(at.rgbAt, rgb.count);
+    place(at.rgbAt, rgb.count / channels * 3);
     at.size = size;
     m.data.assign(size, 0.0);
     auto copy = [&](const Field& f, std::size_t where) {
@@ -421,7 +436,25 @@ Material parse(const std::string& bytes, const std::string& path, const std::str
     nonNegative(sigma, at.sigmaAt, true);
     nonNegative(vndf, at.vndfAt, false);
     (void)r.values(lum);  // checked finite; the sampler's, not the value's
-    const std::vector<double> colour = copy(rgb, at.rgbAt);
+    std::vector<double> colour;
+    if (spectral) {  // each node's rgb = sum over the wavelengths of weight x value (channel-major, as the rgb field)
+        m.wavelengths = int(channels);
+        const std::vector<dvec3> w = rgbWeights(dataDir, lambdaNm);
+        const std::vector<double> spectra = r.values(rgb);
+        const std::size_t grid = std::size_t(at.rgbX) * std::size_t(at.rgbY), slices = std::size_t(nPhi * nTheta);
+        colour.assign(slices * 3 * grid, 0.0);
+        for (std::size_t s = 0; s < slices; ++s)
+            for (std::size_t k = 0; k < channels; ++k)
+                for (int c = 0; c < 3; ++c) {
+                    const double wc = w[k][c];
+                    const double* in = &spectra[(s * channels + k) * grid];
+                    double* out = &colour[(s * 3 + std::size_t(c)) * grid];
+                    for (std::size_t i = 0; i < grid; ++i) out[i] += wc * in[i];
+                }
+        std::copy(colour.begin(), colour.end(), m.data.begin() + std::ptrdiff_t(at.rgbAt));
+    } else {
+        colour = copy(rgb, at.rgbAt);
+    }
     m.mostNegative = std::min(0.0, *std::min_element(colour.begin(), colour.end()));
     m.nodes = std::size_t(nPhi * nTheta) * std::size_t(at.rgbX) * std::size_t(at.rgbY);
     if (const Field* valid = find(fields, "valid"); valid && valid->type == U8) {
@@ -436,11 +469,11 @@ Material parse(const std::string& bytes, const std::string& path, const std::str
     return m;
 }
 
-Material read(const std::string& path, const std::string& what) {
-    return parse(readInputFile(path, what, kMaxReadBytes), path, what);
+Material read(const std::string& path, const std::string& what, const std::string& dataDir) {
+    return parse(readInputFile(path, what, kMaxReadBytes), path, what, dataDir);
 }
 
-std::shared_ptr<const Material> load(const std::string& path, const std::string& what) {
+std::shared_ptr<const Material> load(const std::string& path, const std::string& what, const std::string& dataDir) {
     constexpr std::size_t kKeep = 2;  // as merl::load: a sweep's tables held a few at a time
     struct Entry {
         long long size = -1, mtimeNs = -1;
@@ -466,7 +499,7 @@ std::shared_ptr<const Material> load(const std::string& path, const std::string&
             keep(held);
             return held;
         }
-    auto m = std::make_shared<const Material>(read(path, what));
+    auto m = std::make_shared<const Material>(read(path, what, dataDir));
     for (auto it = cache.begin(); it != cache.end();)
         it = it->second.material.expired() ? cache.erase(it) : std::next(it);
     cache[path] = Entry{size, mtime, m};

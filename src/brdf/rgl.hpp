@@ -11,7 +11,7 @@
 // Fields: theta_i, phi_i (the incidences each table was measured at, radians), ndf and sigma (the measured NDF
 // D(wm) and projected area sigma(wi) over (theta, phi) in the unit square), vndf (the visible NDF per incidence,
 // the warp), luminance (for sampling; checked, not used), rgb (the reflectance per incidence over the warped
-// square), jacobian, description, valid (a bit mask over the rgb nodes; reported, not used: the references
+// square; a spectral file has spectra and wavelengths instead, reduced to rgb when read), jacobian, description, valid (a bit mask over the rgb nodes; reported, not used: the references
 // ignore it too).
 //
 // Evaluation, f(wi, wo) for wi towards the light and wo towards the viewer (local frame, n = +z, azimuth
@@ -82,6 +82,7 @@ struct Material {
     bool jacobian = false;    ///< the file's jacobian flag (the reference reads it and does not use it in eval)
     std::size_t validNodes = 0, nodes = 0;  ///< set bits of the `valid` mask, and rgb nodes (incidences x N x N)
     double mostNegative = 0;                ///< the most negative rgb value (out-of-gamut spectra; clipped to 0)
+    int wavelengths = 0;  ///< a spectral file: its wavelengths, reduced to linear sRGB at the nodes (0: an RGB file)
     Layout at;
     std::vector<double> data;
 
@@ -121,13 +122,17 @@ int buildWarp(Material& m);
 /// kMaxReadBytes, a wrong magic or version, a header or field running past the end (truncated), an unknown
 /// type, a missing or mis-shaped field (its name, type and shape against the expected), a NaN or infinite
 /// value (field and index), incidences out of order or outside [0, pi/2], a negative NDF or VNDF, a sigma <= 0,
-/// a VNDF that integrates to 0, and a spectral file (not read yet: the RGB files of the database are).
-Material read(const std::string& path, const std::string& what = "RGL file");
-Material parse(const std::string& bytes, const std::string& path, const std::string& what = "RGL file");
+/// a VNDF that integrates to 0, and wavelengths out of order or outside [100, 5000] nm in a spectral file.
+/// `dataDir`: hilite's data folder (render::dataDirectory()), whose colorimetry reduces a spectral file to RGB; a
+/// spectral file is refused without it.
+Material read(const std::string& path, const std::string& what = "RGL file", const std::string& dataDir = "");
+Material parse(const std::string& bytes, const std::string& path, const std::string& what = "RGL file",
+               const std::string& dataDir = "");
 
 /// read(), once per process per file while its size and modification time are unchanged; the two most recent
 /// stay alive, the rest are freed with their last user. Thread-safe.
-std::shared_ptr<const Material> load(const std::string& path, const std::string& what = "RGL file");
+std::shared_ptr<const Material> load(const std::string& path, const std::string& what = "RGL file",
+                                     const std::string& dataDir = "");
 
 /// The material at half its resolution along one axis of the rgb tables, for the interpolation's error estimate
 /// (measurement/row.cpp, as merl::halfResolution): axis 0 the warped theta nodes, 1 the warped phi nodes, 2 the

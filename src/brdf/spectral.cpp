@@ -65,6 +65,32 @@ Observer observer(const std::string& dataDir) {
     return o;
 }
 
+}  // namespace
+
+std::vector<dvec3> rgbWeights(const std::string& dataDir, const std::vector<double>& lambdaNm) {
+    const Observer o = observer(dataDir);
+    std::vector<dvec3> w(lambdaNm.size(), dvec3(0.0));
+    if (lambdaNm.empty()) return w;
+    dvec3 total(0.0);
+    for (int nm = kCmfFirstNm; nm <= kCmfLastNm; ++nm) {
+        const dvec3& rgb = o.rgb[size_t(nm - kCmfFirstNm)];
+        total += rgb;
+        // The hat functions of the linear interpolation between the samples.
+        const auto hi = std::upper_bound(lambdaNm.begin(), lambdaNm.end(), double(nm));
+        if (hi == lambdaNm.begin()) w.front() += rgb;
+        else if (hi == lambdaNm.end()) w.back() += rgb;
+        else {
+            const size_t k = size_t(hi - lambdaNm.begin()) - 1;
+            const double t = (nm - lambdaNm[k]) / (lambdaNm[k + 1] - lambdaNm[k]);
+            w[k] += (1.0 - t) * rgb, w[k + 1] += t * rgb;
+        }
+    }
+    for (dvec3& x : w) x /= total;
+    return w;
+}
+
+namespace {
+
 std::shared_ptr<const Spectrum> buildSpectrum(const std::string& dataDir, const std::string& metal, int stepNm) {
     if (stepNm < 1 || (kGpuLastNm - kGpuFirstNm) % stepNm != 0)
         throw InputError("spectral step must divide 400 nm (got " + std::to_string(stepNm) + ")");

@@ -65,6 +65,12 @@ constexpr int kMaxGpuSamples = 81;
 /// file is missing or malformed, InputError for a metal without data.
 std::shared_ptr<const Spectrum> loadSpectrum(const std::string& dataDir, const std::string& metal, int stepNm);
 
+/// Linear sRGB weights of a spectrum sampled at `lambdaNm` (increasing, nm) and linear between the samples
+/// (constant beyond the ends), under D65 with the CIE 1931 observer at 1 nm over 360..830 nm, as the metals':
+/// rgb = sum_k w_k S_k, each channel's weights summing to 1 (a flat S = 1 is (1, 1, 1)). Throws SystemError when
+/// the colorimetry files are missing.
+std::vector<dvec3> rgbWeights(const std::string& dataDir, const std::vector<double>& lambdaNm);
+
 /// Spectral Fresnel: F = sum_i w_i F_Conductor(cosTheta_i, eta_i, k_i), linear sRGB.
 dvec3 F_Spectral(double cosTheta_i, const Spectrum& s);
 

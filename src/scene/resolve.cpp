@@ -247,13 +247,15 @@ void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Pa
         throw InputError(in.where(kNdfTable) + ": the table is the NDF of --model tabulated (got --model " +
                          in.text(kModel) + ")");
     if (table)  // an RGL .bsdf file gives its measured NDF (and projected area), told apart by content
-        p.ndfTable = brdf::isRglNdfFile(in.text(kNdfTable)) ? brdf::rglNdfTable(in.text(kNdfTable), in.where(kNdfTable))
-                                                            : brdf::loadNdfTable(in.text(kNdfTable));
+        p.ndfTable = brdf::isRglNdfFile(in.text(kNdfTable))
+                         ? brdf::rglNdfTable(in.text(kNdfTable), in.where(kNdfTable), render::dataDirectory())
+                         : brdf::loadNdfTable(in.text(kNdfTable));
     resolveFresnel(in, p, spectralStepNm);
     if (in.given(kMeasured)) {
         // Told apart by content, not by name: an RGL file starts with "tensor_file", a MERL file with 90, 90, 180.
         const std::string file = in.text(kMeasured);
-        if (brdf::rgl::fileIsTensorFile(file)) p.rgl = brdf::rgl::load(file, in.where(kMeasured));
+        if (brdf::rgl::fileIsTensorFile(file))
+            p.rgl = brdf::rgl::load(file, in.where(kMeasured), render::dataDirectory());
         else p.measured = brdf::merl::load(file, in.where(kMeasured));
         p.model = brdf::Model::None;  // no analytic term runs: evaluate() and the shader use the table alone
         p.fresnel = brdf::Fresnel::None;

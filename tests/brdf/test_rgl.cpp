@@ -7,6 +7,7 @@
 #include "brdf/merl.hpp"
 #include "brdf/ndf_table.hpp"
 #include "brdf/rgl.hpp"
+#include "brdf/spectral.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/brdf/terms.hpp"
 #include "hilite/core/error.hpp"
@@ -182,7 +183,7 @@ TEST_CASE("rgl: bad files are refused in one line naming the file and what is wr
     {
         auto f = syntheticRgl();
         hilite_test::field(f, "rgb").name = "spectra";
-        cases.push_back({"spectral", tensorFile(f), "spectral RGL file"});
+        cases.push_back({"spectral without wavelengths", tensorFile(f), "has no field 'wavelengths'"});
     }
     {
         auto f = syntheticRgl();
@@ -352,4 +353,57 @@ TEST_CASE("rgl: the real files' NDFs integrate to 1 and their sigma tables are t
         CHECK(t->normalization == doctest::Approx(1.0).epsilon(0.02));
         CHECK(t->projectedAreaMismatch < 0.015);
     }
+}
+
+TEST_CASE("rgl: a spectral file is reduced to linear sRGB at its nodes (CIE 1931 under D65, as the metals)") {
+    // A flat spectrum is grey: every channel holds the spectrum's value (the weights of each channel sum to 1).
+    const auto flat =
+        brdf::rgl::parse(hilite_test::tensorFile(hilite_test::syntheticSpectral([](double) { return 1.0; })),
+                         "flat.bsdf", "RGL file", HILITE_DATA_DIR);
+    CHECK(flat.wavelengths == 48);
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+            for (int y = 0; y < 4; ++y)
+                for (int x = 0; x < 4; ++x)
+                    CHECK(flat.rgbNode(0, k, c, x, y) ==
+                          doctest::Approx(double(hilite_test::syntheticRgb(k, 0, x, y))).epsilon(1e-6));
+    // Long wavelengths only (a red dye): red, little green, no blue.
+    const auto red = brdf::rgl::parse(
+        hilite_test::tensorFile(hilite_test::syntheticSpectral([](double nm) { return nm >= 620 ? 1.0 : 0.0; })),
+        "red.bsdf", "RGL file", HILITE_DATA_DIR);
+    const double r = red.rgbNode(0, 0, 0, 0, 0), g = red.rgbNode(0, 0, 1, 0, 0), b = red.rgbNode(0, 0, 2, 0, 0);
+    MESSAGE("a spectrum of 1 above 620 nm: linear sRGB " << r << ", " << g << ", " << b);
+    CHECK(r > 0.3 * double(hilite_test::syntheticRgb(0, 0, 0, 0)));
+    CHECK(g < 0.2 * r);
+    CHECK(std::abs(b) < 0.02 * r);
+    // The weights themselves: a flat spectrum sums to (1, 1, 1) over any sampling.
+    dvec3 sum(0.0);
+    for (const dvec3& w : brdf::rgbWeights(HILITE_DATA_DIR, {400.0, 550.0, 551.0, 700.0})) sum += w;
+    CHECK(sum.x == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(sum.z == doctest::Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("rgl: bad spectral files are refused in one line") {
+    auto fields = hilite_test::syntheticSpectral([](double) { return 1.0; });
+    auto& wl = hilite_test::field(fields, "wavelengths");
+    std::vector<float> backwards;
+    for (int i = 0; i < 48; ++i) backwards.push_back(float(830.0 - 10.0 * i));
+    wl.bytes = hilite_test::floatBytes(backwards);
+    const auto refused = [](const std::string& bytes, const std::string& dataDir) {
+        try {
+            brdf::rgl::parse(bytes, "bad.bsdf", "--measured", dataDir);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string order = refused(hilite_test::tensorFile(fields), HILITE_DATA_DIR);
+    CHECK(order.find("'wavelengths' is not increasing") != std::string::npos);
+    CHECK(order.find('\n') == std::string::npos);
+    const std::string noData =
+        refused(hilite_test::tensorFile(hilite_test::syntheticSpectral([](double) { return 1.0; })), "");
+    CHECK(noData.find("colorimetry") != std::string::npos);
+    auto noWl = hilite_test::syntheticSpectral([](double) { return 1.0; });
+    noWl.pop_back();  // the wavelengths field
+    CHECK(refused(hilite_test::tensorFile(noWl), HILITE_DATA_DIR).find("'wavelengths'") != std::string::npos);
 }

@@ -135,3 +135,14 @@ TEST_CASE("measured rgl: --ndf-table FILE.bsdf measures as the microfacet model 
     CHECK(oneLine(why));
     CHECK(why.find("--ndf-table") != std::string::npos);
 }
+
+TEST_CASE("measured rgl: a spectral file measures through --measured, reduced to RGB with hilite's colorimetry") {
+    hilite_test::TempDir dir("hilite-rgl-spectral");
+    const std::string file = dir / "flat-spectral.bsdf";
+    std::ofstream(file, std::ios::binary)
+        << hilite_test::tensorFile(hilite_test::syntheticSpectral([](double) { return 1.0; }, 7));
+    const auto rows = measureJson(flags("--measured " + file + " --incidence 30 --size 128"));
+    REQUIRE(rows.size() == 1);
+    CHECK(rows[0]["model"] == "measured:flat-spectral.bsdf");
+    CHECK(rows[0]["aspect"].is_number());
+}

@@ -104,6 +104,28 @@ inline std::vector<TensorField> syntheticGgxNdf(double alpha, int n = 256) {
     return f;
 }
 
+/// The synthetic material as a spectral file: its rgb field replaced by `spectra` [1, 3, W, n, n] and `wavelengths`
+/// (W samples from 360 to 830 nm), each node's spectrum spectrum(lambda) x syntheticRgb(k, 0, x, y).
+template <class Spectrum>
+std::vector<TensorField> syntheticSpectral(Spectrum spectrum, int n = 4, int W = 48) {
+    std::vector<TensorField> f = syntheticRgl(n);
+    std::vector<float> lambda, spectra;
+    for (int i = 0; i < W; ++i) lambda.push_back(float(360.0 + 470.0 * i / (W - 1)));
+    for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < W; ++i)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    spectra.push_back(float(spectrum(lambda[size_t(i)]) * syntheticRgb(k, 0, x, y)));
+    for (TensorField& t : f)
+        if (t.name == "rgb") {
+            t.name = "spectra";
+            t.shape = {1, 3, std::uint64_t(W), std::uint64_t(n), std::uint64_t(n)};
+            t.bytes = floatBytes(spectra);
+        }
+    f.push_back({"wavelengths", 10, {std::uint64_t(W)}, floatBytes(lambda)});
+    return f;
+}
+
 /// The field named `name` of `fields` (the test's own list: it is there).
 inline TensorField& field(std::vector<TensorField>& fields, const std::string& name) {
     for (auto& f : fields)
