@@ -498,6 +498,18 @@ void flagUnbounded(const std::optional<LobeSurvey>& survey, analysis::Shape& sha
     if (survey && survey->unbounded) shape.flags.insert(analysis::Flag::UnboundedAtHorizon);
 }
 
+/// The end of a measurement through one frame: a float diagnosis leaves no numbers (the flags raised before described
+/// numbers that are not there), no highlight no parts, and the frame the final render used.
+Measurement finish(Measurement& m, const Frame& frame) {
+    if (analysis::unmeasured(m.shape))
+        analysis::setUnmeasured(m.shape, m.shape.has(analysis::Flag::FloatOverflow) ? analysis::Flag::FloatOverflow
+                                                                                    : analysis::Flag::FloatUnderflow);
+    if (m.shape.has(analysis::Flag::NoHighlight)) m.shape.components = 0;
+    m.fovDeg = frame.fovDeg;
+    m.center = frame.center;
+    return m;
+}
+
 /// lobe = mirror and no lobe holds the mirror direction: a named diagnosis, no numbers (or no_highlight where the
 /// scene has no lobe anywhere).
 analysis::Shape mirrorNotFound(const render::Scene& scene, const MeasureSetup& setup, Path path) {
@@ -549,13 +561,7 @@ Measurement measureMirror(const ViewFn& view, Path path, const render::Scene& sc
     diagnose(scene, frac, path, m.shape, &widths);
     if (lobe.saddleCut && !analysis::unmeasured(m.shape)) m.shape.flags.insert(analysis::Flag::SaddleCut);
     if (lobe.peakOnHorizon) flagPeakOnHorizonAt(scene, lobe.peakUV, m.shape);
-    if (analysis::unmeasured(m.shape))
-        analysis::setUnmeasured(m.shape, m.shape.has(analysis::Flag::FloatOverflow) ? analysis::Flag::FloatOverflow
-                                                                                    : analysis::Flag::FloatUnderflow);
-    if (m.shape.has(analysis::Flag::NoHighlight)) m.shape.components = 0;
-    m.fovDeg = frame.fovDeg;
-    m.center = frame.center;
-    return m;
+    return finish(m, frame);
 }
 
 Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scene, const MeasureSetup& setup) {
@@ -595,13 +601,7 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     if (survey && !survey->unbounded && survey->parts.size() > 1) flagPartsOutside(scene, *survey, cam, m.shape);
     flagUnbounded(survey, m.shape);
     flagPeakOnHorizon(scene, survey, m.shape);
-    if (analysis::unmeasured(m.shape))  // the flags above describe numbers that are not there
-        analysis::setUnmeasured(m.shape, m.shape.has(analysis::Flag::FloatOverflow) ? analysis::Flag::FloatOverflow
-                                                                                    : analysis::Flag::FloatUnderflow);
-    if (m.shape.has(analysis::Flag::NoHighlight)) m.shape.components = 0;
-    m.fovDeg = frame.fovDeg;
-    m.center = frame.center;
-    return m;
+    return finish(m, frame);
 }
 
 }  // namespace
