@@ -84,8 +84,10 @@ TOLERANCE_SETTINGS = {"size": "str", "boundary": "Literal['subpixel', 'pixel']",
                       "framing": "Literal['fixed', 'auto']", "renderer": "Literal['cpu', 'gl']"}
 TOLERANCE_CHECK = {"size": "str", "aspect": "float"}
 # experiments/fit.cpp toJson: one object per model
-FIT = {"model": "str", "params": "dict[str, float]", "residual": "float", "rank": "int", "target": "str",
-       "evaluations": "int", "time_ms": "float", "stop": "str", "thresholds": "list[float]",
+FIT = {"model": "str", "params": "dict[str, float | str]", "residual": "float | None",
+       "shape_residual": "float | None", "values_residual": "float | None", "rank": "int", "rank_by": "str",
+       "tie": "bool", "verdict": "str", "resolution": "float", "tolerance": "float", "target": "str",
+       "evaluations": "int", "value_evaluations": "int", "time_ms": "float", "stop": "str", "thresholds": "list[float]",
        "weights": "list[float]", "incidence_deg": "list[float]", "aspect_threshold": "float",
        "target_aspect": "list[float | None]", "aspect": "list[float | None]",
        "aspect_residual": "list[float | None]"}
@@ -157,8 +159,10 @@ class MachineError(RuntimeError): ...
     init += "def columns(rows: Sequence[Mapping[str, Any]] | Sequence[Row]) -> dict[str, npt.NDArray[Any]]:\n" + doc(hilite.columns) + "    ...\n\n"
     init += ("def fit(\n    target: str | os.PathLike[str] | None = None,\n    *,\n    models: Sequence[str] = ...,\n"
              "    thresholds: Sequence[float] = ...,\n    weights: Sequence[float] | None = None,\n"
-             "    fit_anisotropy: bool = False,\n    fit_f0: bool = False,\n    fit_geometry: str | None = None,\n"
-             "    fit_fresnel: str | None = None,\n    max_evaluations: int = 80,\n"
+             "    fit_anisotropy: bool | None = None,\n    fit_f0: bool | None = None,\n"
+             "    fit_geometry: str | None = None,\n    fit_fresnel: str | None = None,\n"
+             "    fit_diffuse: str | None = None,\n    rank_by: str | None = None,\n"
+             "    max_evaluations: int | None = None,\n"
              "    scene: Scene | str | os.PathLike[str] | None = None,\n" + keywords(False) +
              ") -> list[FitRow]:\n" + doc(hilite.fit) + "    ...\n\n")
     init += ("def run(experiment: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *, resume: bool = False,\n"

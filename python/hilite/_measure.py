@@ -101,29 +101,36 @@ def render(scene=None, *, maps=False, **params):
     return (img, m) if maps else img
 
 
-def fit(target=None, *, models=("phong", "blinn", "beckmann", "ggx"), thresholds=(0.1, 0.25, 0.5, 0.75, 0.9),
-        weights=None, fit_anisotropy=False, fit_f0=False, fit_geometry=None, fit_fresnel=None, max_evaluations=80,
-        scene=None, **params):
-    """Fits analytic models to a target's highlight and ranks them: the CLI's `hilite fit --json` in process.
+def fit(target=None, *, models=None, thresholds=None, weights=None, fit_anisotropy=None, fit_f0=None,
+        fit_geometry=None, fit_fresnel=None, fit_diffuse=None, rank_by=None, max_evaluations=None, scene=None,
+        **params):
+    """Fits analytic models to a target's BRDF and ranks them: the CLI's `hilite fit --json` in process.
 
-    `target`: a MERL .binary table or a BRDF Explorer .brdf file (str or os.PathLike), or None for a target
-    given by the material keywords (model="ggx", roughness=0.1, ...); `scene` and the other keywords (light,
-    camera, measurement: incidence defaults to "0:85:5", size to 256) apply to the target and every model.
-    `models`, `thresholds`, `weights`, `fit_anisotropy`, `fit_f0`, `fit_geometry`, `fit_fresnel` and
-    `max_evaluations` are the CLI's --models, --thresholds, ... Returns one dict per model, in the order of
-    `models`: model, params (by registry name), residual (weighted RMS of ln(fit / target) of the semi-axes),
-    rank (1: the best), target, evaluations, time_ms, stop, thresholds, weights, incidence_deg,
-    aspect_threshold, target_aspect, aspect and aspect_residual (per angle; None where a sample has no shape).
-    Raises InputError as the CLI refuses."""
+    `target`: a MERL .binary table, an RGL .bsdf file or a BRDF Explorer .brdf file (str or os.PathLike), or
+    None for a target given by the material keywords (model="ggx", roughness=0.1, ...); `scene` and the other
+    keywords (light, camera, measurement: incidence defaults to "0:85:5", size to 256) apply to the target and
+    every model. `models`, `thresholds`, `weights`, `fit_anisotropy`, `fit_f0`, `fit_geometry`, `fit_fresnel`,
+    `fit_diffuse`, `rank_by` and `max_evaluations` are the CLI's --models, --thresholds, ...; None takes the
+    library's default, the CLI's (`hilite._hilite.fit_defaults()`). Returns one dict per model, ranked (rank 1
+    first): model, params (by registry name), residual (by `rank_by`), shape_residual, values_residual, rank,
+    rank_by, tie, verdict ("fits", "tie" or "no_model_fits"), resolution, tolerance, target, evaluations,
+    value_evaluations, time_ms, stop, thresholds, weights, incidence_deg, aspect_threshold, target_aspect, aspect
+    and aspect_residual (per angle; None where a sample has no shape). Raises InputError as the CLI refuses."""
+    d = _hilite.fit_defaults()
+    models = d["models"] if models is None else models
+    thresholds = d["thresholds"] if thresholds is None else thresholds
+    fit_anisotropy = d["fit_anisotropy"] if fit_anisotropy is None else fit_anisotropy
+    fit_f0 = d["fit_f0"] if fit_f0 is None else fit_f0
+    max_evaluations = d["max_evaluations"] if max_evaluations is None else max_evaluations
     if target is not None:
         if not isinstance(target, (str, os.PathLike)):
             raise TypeError(f"target: expected a .binary or .brdf file name, got {type(target).__name__}")
         t = os.fspath(target)
         ext = os.path.splitext(t)[1]
-        if ext not in (".binary", ".brdf"):
-            raise InputError(f"target: '{t}' must be a MERL .binary table or a BRDF Explorer .brdf file "
-                             "(or give the target by its material keywords)")
-        key = "measured" if ext == ".binary" else "brdf"
+        if ext not in (".binary", ".bsdf", ".brdf"):
+            raise InputError(f"target: '{t}' must be a MERL .binary table, an RGL .bsdf file or a BRDF Explorer "
+                             ".brdf file (or give the target by its material keywords)")
+        key = "brdf" if ext == ".brdf" else "measured"
         if params.get(key) is not None:
             raise InputError(f"{key}: not with target (give one)")
         params = dict(params, **{key: t})
@@ -141,7 +148,10 @@ def fit(target=None, *, models=("phong", "blinn", "beckmann", "ggx"), thresholds
     defaults = [(n, t, "") for n, t in (("incidence", "0:85:5"), ("size", "256")) if n not in given]
     return _hilite.fit(defaults + base + items, [str(m) for m in models], [float(x) for x in thresholds],
                        [] if weights is None else [float(x) for x in weights], fit_anisotropy, fit_f0,
-                       fit_geometry or "", fit_fresnel or "", max_evaluations)
+                       d["fit_geometry"] if fit_geometry is None else str(fit_geometry),
+                       d["fit_fresnel"] if fit_fresnel is None else str(fit_fresnel),
+                       d["fit_diffuse"] if fit_diffuse is None else str(fit_diffuse),
+                       d["rank_by"] if rank_by is None else str(rank_by), max_evaluations)
 
 
 _KEYWORDS = signature_doc()

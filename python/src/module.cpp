@@ -90,7 +90,8 @@ py::list measureScenes(const std::vector<Items>& scenes) {
 /// `hilite fit --json` in process: one object per model (experiments/fit.hpp), every scene resolved first.
 py::list fitScene(const Items& items, const std::vector<std::string>& models, const std::vector<double>& thresholds,
                   const std::vector<double>& weights, bool anisotropy, bool f0, const std::string& geometry,
-                  const std::string& fresnel, int maxEvaluations) {
+                  const std::string& fresnel, const std::string& diffuse, const std::string& rankBy,
+                  int maxEvaluations) {
     std::vector<std::string> rows;
     {
         py::gil_scoped_release release;
@@ -103,6 +104,8 @@ py::list fitScene(const Items& items, const std::vector<std::string>& models, co
         o.f0 = f0;
         o.geometry = geometry;
         o.fresnel = fresnel;
+        o.diffuse = diffuse;
+        o.rankBy = rankBy;
         o.maxEvaluations = maxEvaluations;
         experiments::checkFitScenes(values, o);
         const scene::Resolved target = scene::resolve(values);
@@ -390,7 +393,22 @@ PYBIND11_MODULE(_hilite, m) {
     m.def("measure", &measureScenes, py::arg("scenes"));
     m.def("render", &renderScene, py::arg("items"), py::arg("maps"));
     m.def("fit", &fitScene, py::arg("items"), py::arg("models"), py::arg("thresholds"), py::arg("weights"),
-          py::arg("anisotropy"), py::arg("f0"), py::arg("geometry"), py::arg("fresnel"), py::arg("max_evaluations"));
+          py::arg("anisotropy"), py::arg("f0"), py::arg("geometry"), py::arg("fresnel"), py::arg("diffuse"),
+          py::arg("rank_by"), py::arg("max_evaluations"));
+    m.def("fit_defaults", [] {  // the one set of defaults the CLI and experiment files use too
+        const experiments::FitOptions o;
+        py::dict d;
+        d["models"] = o.models;
+        d["thresholds"] = o.thresholds;
+        d["fit_anisotropy"] = o.anisotropy;
+        d["fit_f0"] = o.f0;
+        d["fit_geometry"] = o.geometry;
+        d["fit_fresnel"] = o.fresnel;
+        d["fit_diffuse"] = o.diffuse;
+        d["rank_by"] = o.rankBy;
+        d["max_evaluations"] = o.maxEvaluations;
+        return d;
+    });
     m.def("fresnel", &fresnelOf, py::arg("items"), py::arg("spectral"));
     m.def("albedo", &albedoOf, py::arg("items"));
     m.def("bihemispherical_albedo", &bihemispherical, py::arg("items"));

@@ -20,10 +20,17 @@ namespace hilite::cli {
 
 namespace {
 
+std::string numbersText(const std::vector<double>& v) {
+    std::vector<std::string> t;
+    for (double x : v) t.push_back(exactText(x));
+    return join(t, ",");
+}
+
 struct FitFlags {
     SceneOptions scene;
-    std::string target, models = "phong,blinn,beckmann,ggx", thresholds = "0.1,0.25,0.5,0.75,0.9", weights, output;
-    experiments::FitOptions options;
+    experiments::FitOptions options;  // the defaults: the library's, as Python's and experiment files'
+    std::string target, models = join(options.models, ","), thresholds = numbersText(options.thresholds), weights,
+                        output;
     bool json = false;
 };
 
@@ -42,10 +49,18 @@ std::string paramsText(const nlohmann::ordered_json& p) {
     std::string s;
     for (const auto& [k, v] : p.items()) {
         char buf[64];
-        std::snprintf(buf, sizeof buf, "%s=%.6g", k.c_str(), v.get<double>());
+        if (v.is_string()) std::snprintf(buf, sizeof buf, "%s=%s", k.c_str(), v.get<std::string>().c_str());
+        else std::snprintf(buf, sizeof buf, "%s=%.6g", k.c_str(), v.get<double>());
         s += (s.empty() ? "" : " ") + std::string(buf);
     }
     return s;
+}
+
+std::string residualText(double v) {
+    char buf[32];
+    if (std::isfinite(v)) std::snprintf(buf, sizeof buf, "%.3e", v);
+    else std::snprintf(buf, sizeof buf, "-");
+    return buf;
 }
 
 void printTable(const experiments::FitResult& r) {
@@ -53,14 +68,22 @@ void printTable(const experiments::FitResult& r) {
                 r.thresholds.size());
     for (size_t j = 0; j < r.thresholds.size(); ++j)
         std::printf("%s%g weight %g", j ? ", " : "", r.thresholds[j], r.weights[j]);
-    std::printf(")\nresidual: weighted RMS of ln(fit / target) of the semi-axes\n\n");
-    std::printf("%-4s %-14s %-40s %10s %6s %8s  %s\n", "rank", "model", "params", "residual", "evals", "time_s",
-                "stop");
-    for (int rank = 1; rank <= int(r.fits.size()); ++rank)
-        for (const auto& m : r.fits)
-            if (m.rank == rank)
-                std::printf("%-4d %-14s %-40s %10.3e %6d %8.2f  %s\n", m.rank, m.model.c_str(),
-                            paramsText(m.params).c_str(), m.residual, m.evaluations, m.ms / 1000.0, m.stop.c_str());
+    std::printf(
+        ")\nshape: weighted RMS of ln(fit / target) of the semi-axes; values: RMS of ln(1 + f cos theta_i), "
+        "fit against target, over the measured directions%s\nranked by %s\n\n",
+        r.hasValues ? "" : " (none: a .brdf file has no double evaluation)", r.rankBy.c_str());
+    std::printf("%-4s %-14s %-44s %10s %10s %6s %8s  %s\n", "rank", "model", "params", "shape", "values", "evals",
+                "time_s", "stop");
+    for (const auto& m : r.fits)
+        std::printf("%-4d %-14s %-44s %10s %10s %6d %8.2f  %s%s\n", m.rank, m.model.c_str(),
+                    paramsText(m.params).c_str(), residualText(m.shapeResidual).c_str(),
+                    residualText(m.valuesResidual).c_str(), m.evaluations, m.ms / 1000.0, m.stop.c_str(),
+                    m.tie ? " (tie)" : "");
+    std::printf(
+        "\nverdict: %s (best %s residual %s; the target's resolution %.2e; no model fits above %.2e, a tie "
+        "within %.2e)\n",
+        r.verdict.c_str(), r.rankBy.c_str(), residualText(r.fits.front().residual).c_str(), r.resolution, r.tolerance,
+        r.tieMargin);
     std::printf("\naspect at threshold %g (fit - target per model):\n%6s %9s", r.aspectThreshold, "theta", "target");
     for (const auto& m : r.fits) std::printf(" %14s", m.model.c_str());
     std::printf("\n");
@@ -84,7 +107,7 @@ int runFit(FitFlags& f) {
     scene::Values values = commandValues(f.scene);
     if (!f.target.empty()) {
         const std::string ext = std::filesystem::path(f.target).extension().string();
-        if (ext == ".binary") values.set("measured", f.target, "--target");
+        if (ext == ".binary" || ext == ".bsdf") values.set("measured", f.target, "--target");
         else if (ext == ".brdf") values.set("brdf", f.target, "--target");
         else
             throw InputError("--target: '" + f.target +
@@ -140,14 +163,30 @@ Action addFit(CLI::App& app) {
         ->group(g);
     app.add_option("--weights", f->weights, "a weight >= 0 per threshold (default 1 each)")->group(g);
     app.add_flag("--fit-anisotropy", f->options.anisotropy, "fit roughness_y too (beckmann, ggx)")->group(g);
-    app.add_flag("--fit-f0", f->options.f0, "fit a Schlick F0 against the peak (microfacet models)")->group(g);
-    app.add_option("--fit-geometry", f->options.geometry,
-                   "the fitted models' --geometry (default: the registry's, implicit)")
-        ->check(CLI::IsMember({"none", "implicit", "cook-torrance", "smith-separable", "smith"}))
+    app.add_flag("--fit-f0,!--no-fit-f0", f->options.f0,
+                 "fit a Schlick F0 (microfacet models; default on, --no-fit-f0: F0 0.04)")
         ->group(g);
-    app.add_option("--fit-fresnel", f->options.fresnel,
-                   "the fitted models' --fresnel (default none; schlick with --fit-f0)")
-        ->check(CLI::IsMember({"none", "schlick"}))
+    app.add_option(
+           "--fit-geometry", f->options.geometry,
+           "the fitted microfacet models' --geometry; auto: smith or implicit, whichever fits the values better")
+        ->capture_default_str()
+        ->check(CLI::IsMember(experiments::fitGeometries()))
+        ->group(g);
+    app.add_option("--fit-fresnel", f->options.fresnel, "the fitted microfacet models' --fresnel")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"schlick", "none"}))
+        ->group(g);
+    app.add_option("--fit-diffuse", f->options.diffuse,
+                   "a Lambertian albedo in every fitted model: auto (where the values fit finds one >= 0.001), on, "
+                   "off")
+        ->capture_default_str()
+        ->check(CLI::IsMember(experiments::fitDiffuseChoices()))
+        ->group(g);
+    app.add_option("--rank-by", f->options.rankBy,
+                   "the ranking criterion: shape (the highlight's semi-axes) or values (the BRDF over the measured "
+                   "directions); both are reported")
+        ->capture_default_str()
+        ->check(CLI::IsMember(experiments::fitCriteria()))
         ->group(g);
     app.add_option("--max-evaluations", f->options.maxEvaluations, "per model: measured sweeps at most")
         ->capture_default_str()

@@ -30,14 +30,6 @@ struct SliceFlags {
     std::string out;
 };
 
-/// A value quoted in a message: one line, at most 80 bytes.
-std::string printable(std::string s) {
-    if (s.size() > 80) s = s.substr(0, 77) + "...";
-    for (char& c : s)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    return s;
-}
-
 bool materialParam(const scene::Param& p) {
     return p.table == scene::Table::Material && p.name != "brdf" && p.name != "param";
 }

@@ -83,4 +83,11 @@ std::string didYouMean(const std::string& word, const std::vector<std::string>& 
     return best;
 }
 
+std::string printable(std::string s) {
+    if (s.size() > 80) s = s.substr(0, 77) + "...";
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return s;
+}
+
 }  // namespace hilite

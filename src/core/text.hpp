@@ -22,6 +22,8 @@ std::string exactText(double v);
 /// An interval for messages and help, "[0, 1e+08]" or "(0, 179]": each bound as fmt() prints it where that
 /// reads back exactly, else exactText(), so the registry and .brdf files print one range one way.
 std::string rangeText(double lo, double hi, bool openLo = false, bool openHi = false);
+/// A value quoted in a message: one line (control characters as '?'), at most 80 bytes.
+std::string printable(std::string s);
 /// Closest of `candidates` to `word` by edit distance, or "" if none is close.
 std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates);
 

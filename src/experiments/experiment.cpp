@@ -48,14 +48,6 @@ std::string typeName(const toml::node& n) {
     }
 }
 
-/// A value quoted in a message: one line, at most 80 bytes.
-std::string printable(std::string s) {
-    if (s.size() > 80) s = s.substr(0, 77) + "...";
-    for (char& c : s)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    return s;
-}
-
 /// One table of an experiment file with a fixed set of keys: an unknown key is refused (with a did-you-mean
 /// hint, as scene files do), and each typed read refuses a value of another type, naming file:line: table.key.
 class Fields {
@@ -455,15 +447,18 @@ void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     const auto* t = table(doc, path, "fit");
     if (!t) return;
     const Fields f(*t, path, "fit",
-                   {"models", "thresholds", "weights", "anisotropy", "f0", "geometry", "fresnel", "max_evaluations"});
+                   {"models", "thresholds", "weights", "anisotropy", "f0", "geometry", "fresnel", "diffuse", "rank_by",
+                    "max_evaluations"});
     FitOptions o;
     if (f.node("models")) o.models = f.strings("models");
     if (f.node("thresholds")) o.thresholds = f.numbers("thresholds");
     if (f.node("weights")) o.weights = f.numbers("weights");
-    o.anisotropy = f.boolean("anisotropy", false);
-    o.f0 = f.boolean("f0", false);
-    o.geometry = f.string("geometry", "");
-    o.fresnel = f.string("fresnel", "");
+    o.anisotropy = f.boolean("anisotropy", o.anisotropy);
+    o.f0 = f.boolean("f0", o.f0);
+    o.geometry = f.string("geometry", o.geometry);
+    o.fresnel = f.string("fresnel", o.fresnel);
+    o.diffuse = f.string("diffuse", o.diffuse);
+    o.rankBy = f.string("rank_by", o.rankBy);
     o.maxEvaluations = wholeNumber(f, "max_evaluations", 1, 10000, o.maxEvaluations);  // documented as an integer
     try {
         checkFitOptions(o);
@@ -725,9 +720,11 @@ std::vector<std::string> rowColumns(const Experiment& e) {
     if (e.timing)
         for (const char* c : {"time_ms", "repeats", "error_estimate"}) add(c);
     if (e.fit) {
-        for (const char* c : {"target", "best_model", "best_residual", "best_params", "fit_time_ms"}) add(c);
+        for (const char* c :
+             {"target", "verdict", "resolution", "best_model", "best_residual", "best_params", "fit_time_ms"})
+            add(c);
         for (const std::string& m : e.fit->models)
-            for (const char* c : {"_residual", "_rank", "_params"}) add(m + c);
+            for (const char* c : {"_residual", "_shape_residual", "_values_residual", "_rank", "_params"}) add(m + c);
     }
     if (e.bounces)
         for (const auto& c : bounceColumns()) add(c);

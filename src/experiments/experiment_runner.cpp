@@ -178,15 +178,19 @@ nlohmann::json ExperimentRunner::fitRow(const scene::Values& values, nlohmann::j
     for (auto& [k, v] : columns.items())
         if (k != "incidence_deg") row[k] = v;  // the fit sweeps incidence: no one angle is the row's
     row["target"] = res.target;
-    for (size_t k = 0; k < res.fits.size(); ++k) {
-        const ModelFit& f = res.fits[k];
-        const std::string& name = m_exp.fit->models[k];  // the column names rowColumns() gave
-        row[name + "_residual"] = f.residual;
+    row["verdict"] = res.verdict;
+    row["resolution"] = res.resolution;
+    auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+    for (const ModelFit& f : res.fits) {  // ranked; named as FitOptions::models names them (the columns)
+        const std::string& name = f.model;
+        row[name + "_residual"] = number(f.residual);
+        row[name + "_shape_residual"] = number(f.shapeResidual);
+        row[name + "_values_residual"] = number(f.valuesResidual);
         row[name + "_rank"] = f.rank;
         row[name + "_params"] = f.params.dump();
         if (f.rank == 1) {
             row["best_model"] = name;
-            row["best_residual"] = f.residual;
+            row["best_residual"] = number(f.residual);
             row["best_params"] = f.params.dump();
         }
     }

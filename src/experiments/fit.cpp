@@ -1,6 +1,7 @@
 #include "hilite/experiments/fit.hpp"
 
 #include "core/text.hpp"
+#include "experiments/fit_values.hpp"
 #include "experiments/plot.hpp"
 #include "hilite/brdf/params.hpp"
 #include "hilite/core/error.hpp"
@@ -17,6 +18,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -26,25 +29,35 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The row flags that leave no shape to compare (analysis/highlight.hpp).
-const char* const kUnusable[] = {"no_highlight",       "mirror",         "unbounded_at_horizon",
-                                 "effectively_mirror", "float_overflow", "float_underflow"};
+/// The row flags that leave no shape to compare (analysis/highlight.hpp): nothing measured, or a region whose
+/// edge is the frame's (clipped, covers_frame: a diffuse floor above the threshold) or the horizon's (its semi-axes
+/// then follow the BRDF at grazing view, where measured data hold nothing reliable: Ngan et al. 2005 cut MERL at
+/// 80 deg, and a table's bins below the horizon hold no data; a Beckmann table moved such samples by 20%).
+const char* const kUnusable[] = {
+    "no_highlight", "mirror",       "unbounded_at_horizon", "effectively_mirror", "float_overflow", "float_underflow",
+    "clipped",      "covers_frame", "horizon_cut",          "peak_on_horizon",    "no_mirror_lobe"};
 
-/// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0.
+/// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0; the values
+/// fit appends the albedo, which the shape fit then holds (albedo, or none when negative).
 struct Space {
     brdf::Model model;
     const char* width;     ///< "exponent" or "roughness"
     double lo, hi, guess;  ///< bounds and a start for ln(width)
     bool aniso, f0;
+    bool fitAlbedo = false;  ///< the values fit varies a Lambertian albedo
+    double albedo = -1;      ///< the albedo the model carries (< 0: no diffuse term)
+    std::string geometry;    ///< microfacet models' G ("auto": chosen by the values fit)
 };
 
 Space spaceOf(const std::string& name, const FitOptions& o) {
     const auto model = brdf::parseModel(name);
-    Space s{*model, "roughness", std::log(1e-3), std::log(2.0), std::log(0.1), false, false};
+    Space s{*model, "roughness", std::log(1e-3), std::log(2.0), std::log(0.1), false, false, false, -1, ""};
     if (brdf::usesExponent(*model))
-        s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false};
+        s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false, false, -1, ""};
     s.aniso = o.anisotropy && brdf::allowsAnisotropy(*model);
-    s.f0 = o.f0 && brdf::isMicrofacet(*model);
+    s.f0 = o.f0 && o.fresnel == "schlick" && brdf::isMicrofacet(*model);
+    s.fitAlbedo = o.diffuse != "off";
+    s.geometry = o.geometry;
     return s;
 }
 
@@ -132,10 +145,10 @@ double peakBetweenPixels(const ImageF& img) {
 constexpr double kOneFrameMinPixels = 40;
 
 /// Whether a sweep may take the one-frame route below: GL, automatic framing with a twin, one sample per pixel,
-/// and nothing the row's own path adds (tolerance search, reference, bump fields).
+/// and nothing the row's own path adds (tolerance search, reference, bump fields, the mirror lobe's mask).
 bool oneFrame(const scene::Resolved& r) {
     return !r.reference && r.tolerance == 0 && !r.setup.cpu && render::hasTwin(r.scene) && !r.scene.surface.bumps &&
-           r.setup.fovDeg == 0 && r.setup.supersample == 1;
+           r.setup.fovDeg == 0 && r.setup.supersample == 1 && r.setup.options.lobe == analysis::Lobe::All;
 }
 
 /// Measures a sweep, incidence-major (the order of FitResult::samples). One frame serves every threshold of an
@@ -225,12 +238,14 @@ scene::Values modelValues(const scene::Values& common, const Space& s, const Fit
     v.set(s.width, exactText(std::exp(x[0])));
     size_t k = 1;
     if (s.aniso) v.set("roughness_y", exactText(std::exp(x[0] + x[k++])));
-    if (!o.geometry.empty()) v.set("geometry", o.geometry);
-    if (s.f0) {
-        v.set("fresnel", "schlick");
-        v.set("f0", exactText(x[k]));
-    } else if (!o.fresnel.empty() && brdf::isMicrofacet(s.model)) {
+    if (brdf::isMicrofacet(s.model)) {
+        v.set("geometry", s.geometry == "auto" ? "smith" : s.geometry);
         v.set("fresnel", o.fresnel);
+        if (s.f0) v.set("f0", exactText(x[k]));
+    }
+    if (s.albedo >= 0) {
+        v.set("diffuse", "lambert");
+        v.set("albedo", exactText(s.albedo));
     }
     return v;
 }
@@ -288,9 +303,9 @@ std::vector<std::vector<double>> startingPoints(measurement::Session& session, c
     } else {
         out.push_back(s.aniso ? std::vector<double>{w, 0.0} : std::vector<double>{w});
     }
-    if (s.f0) {
+    if (s.f0) {  // with the values criterion its fit sets F0 instead
         double f0 = 0.04;
-        if (first) {
+        if (first && !r.hasValues) {
             std::vector<double> x = out.front();
             x.push_back(f0);
             const scene::Values v = modelValues(common, s, o, x);
@@ -364,19 +379,29 @@ void checkFitOptions(const FitOptions& o) {
     if (o.anisotropy && std::none_of(o.models.begin(), o.models.end(),
                                      [](const std::string& m) { return brdf::allowsAnisotropy(*brdf::parseModel(m)); }))
         throw InputError("--fit-anisotropy: needs beckmann or ggx among --models");
-    if (o.f0 && std::none_of(o.models.begin(), o.models.end(),
-                             [](const std::string& m) { return brdf::isMicrofacet(*brdf::parseModel(m)); }))
-        throw InputError("--fit-f0: needs a microfacet model (blinn, gaussian, beckmann, ggx) among --models");
-    static const std::vector<std::string> geometries = {"none", "implicit", "cook-torrance", "smith-separable",
-                                                        "smith"};
-    if (!o.geometry.empty() && std::find(geometries.begin(), geometries.end(), o.geometry) == geometries.end())
-        throw InputError("--fit-geometry: '" + o.geometry + "' (allowed: " + join(geometries) + ")");
-    if (!o.fresnel.empty() && o.fresnel != "none" && o.fresnel != "schlick")
-        throw InputError("--fit-fresnel: '" + o.fresnel + "' (allowed: none, schlick)");
+    auto among = [](const std::string& flag, const std::string& v, const std::vector<std::string>& allowed) {
+        if (std::find(allowed.begin(), allowed.end(), v) == allowed.end())
+            throw InputError(flag + ": '" + printable(v) + "' (allowed: " + join(allowed, ", ") + ")");
+    };
+    among("--fit-geometry", o.geometry, fitGeometries());
+    among("--fit-fresnel", o.fresnel, {"schlick", "none"});
+    among("--fit-diffuse", o.diffuse, fitDiffuseChoices());
+    among("--rank-by", o.rankBy, fitCriteria());
     if (o.maxEvaluations < 1 || o.maxEvaluations > 10000)
         throw InputError("--max-evaluations: an integer in [1, 10000] (got " + std::to_string(o.maxEvaluations) + ")");
-    if (o.f0 && !o.fresnel.empty() && o.fresnel != "schlick")
-        throw InputError("--fit-f0: fits Schlick's F0, not with --fit-fresnel " + o.fresnel);
+}
+
+const std::vector<std::string>& fitGeometries() {
+    static const std::vector<std::string> v = {"auto", "smith", "smith-separable", "cook-torrance", "implicit", "none"};
+    return v;
+}
+const std::vector<std::string>& fitDiffuseChoices() {
+    static const std::vector<std::string> v = {"auto", "on", "off"};
+    return v;
+}
+const std::vector<std::string>& fitCriteria() {
+    static const std::vector<std::string> v = {"shape", "values"};
+    return v;
 }
 
 namespace {
@@ -396,6 +421,16 @@ FitResult emptyResult(const scene::Values& target, const FitOptions& o) {
 
 void checkFitScenes(const scene::Values& target, const FitOptions& o) {
     checkFitOptions(o);
+    if (target.given("brdf")) {  // a .brdf file is GLSL: no values to compare or to fit an albedo by
+        if (o.rankBy == "values")
+            throw InputError(
+                "--rank-by values: the target has no double evaluation (a .brdf file runs as GLSL "
+                "only); rank by shape");
+        if (o.diffuse == "on")
+            throw InputError(
+                "--fit-diffuse on: the albedo is fitted by values, and the target has no double "
+                "evaluation (a .brdf file runs as GLSL only); give auto or off");
+    }
     const FitResult r = emptyResult(target, o);
     sweepScenes(target, r);
     const scene::Values common = withoutMaterial(target);
@@ -405,14 +440,105 @@ void checkFitScenes(const scene::Values& target, const FitOptions& o) {
     }
 }
 
+namespace {
+
+/// The values fit of one model: BOBYQA over the space's parameters (and the albedo where the space fits one)
+/// against the target's values, from the best of a coarse scan of the width (and F0) around `x0`. Cheap: double
+/// evaluations only. Returns the parameters (the albedo last, where fitted) and sets `residual`, `evaluations`.
+std::vector<double> fitValues(const scene::Values& common, const Space& s, const FitOptions& o,
+                              const std::vector<std::vector<double>>& starts, const values::Directions& dirs,
+                              const std::vector<double>& target, double& residual, int& evaluations) {
+    Space base = s;
+    if (s.fitAlbedo) base.albedo = 0.5;  // resolved with a diffuse term whose albedo the search then sets
+    scene::Resolved res = scene::resolve(modelValues(common, base, o, starts.front()));
+    scene::dropEnergyTerms(res.scene.brdf);
+    const bool exponent = brdf::usesExponent(s.model);
+    auto apply = [&](const std::vector<double>& x) {
+        brdf::Params p = res.scene.brdf;
+        (exponent ? p.exponent : p.roughness) = std::exp(x[0]);
+        size_t k = 1;
+        if (s.aniso) p.roughnessY = std::exp(x[0] + x[k++]);
+        if (s.f0) p.f0 = dvec3(x[k++]);
+        if (s.fitAlbedo) p.albedo = dvec3(x[k]);
+        return p;
+    };
+    std::vector<double> lo{s.lo}, hi{s.hi}, step{0.1};
+    if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1);
+    if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
+    if (s.fitAlbedo) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<double> bestX;
+    auto objective = [&](const std::vector<double>& x) {
+        ++evaluations;
+        const double r = values::residual(values::sample(apply(x), dirs), target);
+        if (r < best) best = r, bestX = x;
+        return std::isfinite(r) ? r * r : 1e12;  // the mean square: smooth at an exact fit, where the RMS is a cone
+    };
+    // The coarse scan: ln(width) from the start in steps of 0.5 either way, F0 at 0.04, 0.3 and 0.9 (a
+    // dielectric's and a metal's), the albedo at 0: the residual in log space has a plateau far from the lobe.
+    std::vector<double> start;
+    double startValue = std::numeric_limits<double>::infinity();
+    for (const std::vector<double>& x0 : starts)
+        for (int i = -4; i <= 4; ++i)
+            for (double f0 : s.f0 ? std::vector<double>{0.04, 0.3, 0.9} : std::vector<double>{0.0}) {
+                std::vector<double> x = x0;
+                x[0] = std::clamp(x0[0] + 0.5 * i, s.lo, s.hi);
+                if (s.f0) x[x.size() - 1] = f0;
+                if (s.fitAlbedo) x.push_back(0.0);
+                const double v = objective(x);
+                if (v < startValue) startValue = v, start = x;
+            }
+    nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(start.size()));
+    opt.set_lower_bounds(lo);
+    opt.set_upper_bounds(hi);
+    opt.set_initial_step(step);
+    opt.set_xtol_abs(o.xtolAbs);
+    opt.set_ftol_rel(1e-8);
+    opt.set_maxeval(std::max(o.maxEvaluations, 200));  // cheap: no rendering
+    opt.set_min_objective([](const std::vector<double>& xv, std::vector<double>&,
+                             void* data) { return (*static_cast<decltype(objective)*>(data))(xv); },
+                          &objective);
+    double value = 0;
+    try {
+        opt.optimize(start, value);
+    } catch (const std::exception&) {  // roundoff limited, forced stop: the best point so far stands
+    }
+    residual = best;
+    return bestX;
+}
+
+/// The target's values at the grid's directions, or empty when it has no double evaluation (a .brdf file).
+std::vector<double> targetValues(const scene::Values& target, const values::Directions& dirs) {
+    if (target.given("brdf")) return {};
+    scene::Resolved res = scene::resolve(target, scene::Purpose::Brdf);
+    return values::sample(res.scene.brdf, dirs);
+}
+
+/// The verdict of a ranked result: see fit.hpp.
+void judge(FitResult& r) {
+    r.tolerance = std::max(10.0 * r.resolution, 0.01);
+    r.tieMargin = std::max(r.resolution, 1e-4);
+    const double best = r.fits.front().residual;
+    for (ModelFit& m : r.fits) m.tie = false;
+    for (size_t k = 1; k < r.fits.size(); ++k)
+        if (r.fits[k].residual - best < r.tieMargin) r.fits[k].tie = r.fits.front().tie = true;
+    r.verdict = !(best <= r.tolerance) ? "no_model_fits" : r.fits.front().tie ? "tie" : "fits";
+}
+
+}  // namespace
+
 FitResult fitModels(measurement::Session& session, const scene::Values& target, const FitOptions& o) {
     // Every scene resolved before the first measurement: the target's, and each model's at its start.
     checkFitScenes(target, o);
     FitResult r = emptyResult(target, o);
+    r.rankBy = o.rankBy;
     const auto targetScenes = sweepScenes(target, r);
     const scene::Values common = withoutMaterial(target);
     std::vector<Space> spaces;
     for (const std::string& m : o.models) spaces.push_back(spaceOf(m, o));
+    const values::Directions dirs = values::grid(o.anisotropy);
+    const std::vector<double> tv = targetValues(target, dirs);
+    r.hasValues = !tv.empty();
     r.samples = measureSweep(session, targetScenes, r);
     // A threshold whose level underflows float at every angle measures nothing (the region becomes "every pixel
     // above 0", the same for every model: a fit at a search bound ranked first): refused, not fitted around.
@@ -428,25 +554,82 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
     }
     if (std::none_of(r.samples.begin(), r.samples.end(), [](const FitSample& s) { return s.usable; }))
         throw InputError("fit: the target shows no measurable highlight at any incidence and threshold (" +
-                         r.samples.front().why + ")");
+                         r.samples.front().why + ")" +
+                         (targetScenes.front().setup.options.lobe == analysis::Lobe::All
+                              ? "; a measured material's radiance often peaks at the horizon: --lobe mirror measures "
+                                "the lobe about the mirror direction"
+                              : ""));
+    // The shape criterion's resolution: the target's own semi-axes at 1.5x the size against the fit's size.
+    if (o.rankBy == "shape") {
+        scene::Values finer = target;
+        finer.set("size", std::to_string(targetScenes.front().setup.width * 3 / 2));
+        r.resolution = residualOf(r, measureSweep(session, sweepScenes(finer, r), r), false);
+        if (!std::isfinite(r.resolution)) r.resolution = 0;
+    }
 
     for (size_t k = 0; k < o.models.size(); ++k) {
-        const Space& s = spaces[k];
+        Space s = spaces[k];
         const auto t0 = Clock::now();
         ModelFit fit;
-        fit.model = brdf::toString(s.model);
-        std::vector<double> lo{s.lo}, hi{s.hi}, step{0.05};
-        if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1);
-        if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
+        fit.model = o.models[k];
+        fit.valuesResidual = kNaN;
+        // Seeded by the values fit, the shape fit starts near its answer: smaller first steps.
+        const double scale = r.hasValues ? 0.4 : 1.0;
+        std::vector<double> lo{s.lo}, hi{s.hi}, step{0.05 * scale};
+        if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1 * scale);
+        if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02 * scale);
+        std::vector<std::vector<double>> starts = startingPoints(session, common, s, o, r);
+        if (r.hasValues) {
+            // The values fit seeds the shape fit (and sets the albedo, which the shape fit holds). With geometry
+            // auto, a microfacet model is fitted with Smith's G and with the implicit G (masking or none, the two
+            // families of measured and idealized lobes) and keeps the one whose values fit is closer.
+            std::vector<double> x;
+            std::vector<std::string> geometries{s.geometry};
+            if (s.geometry == "auto")
+                geometries = brdf::isMicrofacet(s.model) ? std::vector<std::string>{"smith", "implicit"}
+                                                         : std::vector<std::string>{"smith"};
+            fit.valuesResidual = std::numeric_limits<double>::infinity();
+            std::string chosen = geometries.front();
+            for (const std::string& g : geometries) {
+                Space sg = s;
+                sg.geometry = g;
+                double res = kNaN;
+                std::vector<double> xg = fitValues(common, sg, o, starts, dirs, tv, res, fit.valueEvaluations);
+                if (res < fit.valuesResidual || x.empty()) fit.valuesResidual = res, x = xg, chosen = g;
+            }
+            s.geometry = chosen;
+            if (s.fitAlbedo) {
+                s.albedo = x.back();
+                x.pop_back();
+                if (o.diffuse == "auto" && s.albedo < kMinFittedAlbedo) s.albedo = -1;  // no diffuse part
+            }
+            starts = {x};
+        } else {
+            s.fitAlbedo = false;
+            if (s.geometry == "auto") {  // no values to choose by: the shape residual at the start chooses
+                double lowest = std::numeric_limits<double>::infinity();
+                std::string chosen = "smith";
+                for (const char* g : {"smith", "implicit"}) {
+                    if (!brdf::isMicrofacet(s.model)) break;
+                    Space sg = s;
+                    sg.geometry = g;
+                    ++fit.evaluations;
+                    const double res = residualOf(
+                        r, measureSweep(session, sweepScenes(modelValues(common, sg, o, starts.front()), r), r), sg.f0);
+                    if (res < lowest) lowest = res, chosen = g;
+                }
+                s.geometry = chosen;
+            }
+        }
         double best = std::numeric_limits<double>::infinity();
-        std::vector<double> bestX;
+        std::vector<double> bestX = starts.front();
         std::vector<FitSample> bestSamples;
         auto objective = [&](const std::vector<double>& xv) {
             ++fit.evaluations;
             const auto samples = measureSweep(session, sweepScenes(modelValues(common, s, o, xv), r), r);
             const double res = residualOf(r, samples, s.f0);
-            if (res < best) best = res, bestX = xv, bestSamples = samples;
-            return std::isfinite(res) ? res : 1e6;
+            if (res < best || bestSamples.empty()) best = res, bestX = xv, bestSamples = samples;
+            return std::isfinite(res) ? res * res : 1e12;  // the mean square, as the values fit
         };
         auto optimize = [&](std::vector<double> x) {
             for (size_t i = 0; i < x.size(); ++i) x[i] = std::clamp(x[i], lo[i], hi[i]);
@@ -455,7 +638,7 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
             opt.set_upper_bounds(hi);
             opt.set_initial_step(step);
             opt.set_xtol_abs(o.xtolAbs);
-            opt.set_ftol_rel(1e-6);  // a flat residual (phong against a microfacet lobe) stops before xtol
+            opt.set_ftol_rel(1e-5);  // a flat residual (phong against a microfacet lobe) stops before xtol
             opt.set_maxeval(o.maxEvaluations);
             opt.set_min_objective([](const std::vector<double>& xv, std::vector<double>&,
                                      void* data) { return (*static_cast<decltype(objective)*>(data))(xv); },
@@ -469,21 +652,35 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                 fit.stop = "forced stop";
             }
         };
-        for (const std::vector<double>& x : startingPoints(session, common, s, o, r)) optimize(x);
-        fit.residual = best;
+        if (o.rankBy == "values") {
+            objective(starts.front());  // the shape residual at the values fit's parameters
+            fit.stop = "values fit";
+        } else {
+            for (const std::vector<double>& x : starts) optimize(x);
+            if (r.hasValues) {  // the values residual at the parameters reported
+                scene::Resolved res = scene::resolve(modelValues(common, s, o, bestX), scene::Purpose::Brdf);
+                fit.valuesResidual = values::residual(values::sample(res.scene.brdf, dirs), tv);
+            }
+        }
+        fit.shapeResidual = best;
+        fit.residual = o.rankBy == "values" ? fit.valuesResidual : fit.shapeResidual;
         fit.samples = bestSamples;
         fit.params[s.width] = std::exp(bestX[0]);
         size_t j = 1;
         if (s.aniso) fit.params["roughness_y"] = std::exp(bestX[0] + bestX[j++]);
         if (s.f0) fit.params["f0"] = bestX[j];
+        if (s.albedo >= 0) fit.params["albedo"] = s.albedo;
+        if (brdf::isMicrofacet(s.model)) fit.params["geometry"] = s.geometry;
         fit.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         r.fits.push_back(std::move(fit));
     }
-    std::vector<size_t> order(r.fits.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return r.fits[a].residual < r.fits[b].residual; });
-    for (size_t i = 0; i < order.size(); ++i) r.fits[order[i]].rank = int(i) + 1;
+    // Ranked; a residual that is not a number (nothing measured) ranks last.
+    std::stable_sort(r.fits.begin(), r.fits.end(), [](const ModelFit& a, const ModelFit& b) {
+        const bool fa = std::isfinite(a.residual), fb = std::isfinite(b.residual);
+        return fa != fb ? fa : fa && a.residual < b.residual;
+    });
+    for (size_t i = 0; i < r.fits.size(); ++i) r.fits[i].rank = int(i) + 1;
+    judge(r);
     return r;
 }
 
@@ -506,10 +703,19 @@ nlohmann::ordered_json toJson(const FitResult& r, const ModelFit& m) {
     nlohmann::ordered_json j;
     j["model"] = m.model;
     j["params"] = m.params;
-    j["residual"] = m.residual;
+    auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
+    j["residual"] = number(m.residual);
+    j["shape_residual"] = number(m.shapeResidual);
+    j["values_residual"] = number(m.valuesResidual);
     j["rank"] = m.rank;
+    j["rank_by"] = r.rankBy;
+    j["tie"] = m.tie;
+    j["verdict"] = r.verdict;
+    j["resolution"] = r.resolution;
+    j["tolerance"] = r.tolerance;
     j["target"] = r.target;
     j["evaluations"] = m.evaluations;
+    j["value_evaluations"] = m.valueEvaluations;
     j["time_ms"] = m.ms;
     j["stop"] = m.stop;
     j["thresholds"] = r.thresholds;
@@ -576,7 +782,8 @@ bool writeFitFolder(const std::string& dir, const FitResult& r, std::string& why
     }
     PlotSpec a;
     a.file = "fit_aspect.png";
-    a.title = "aspect at threshold " + fmt(r.aspectThreshold) + ": " + r.target + " and each fit";
+    a.title = "aspect at threshold " + fmt(r.aspectThreshold) + ": " + r.target +
+              " and each fit (verdict: " + r.verdict + ", ranked by " + r.rankBy + ")";
     a.x = "incidence";
     a.y = "aspect";
     a.series = "series";

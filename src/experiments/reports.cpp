@@ -203,12 +203,16 @@ std::string fitSection(const Experiment& e, const Rows& rows) {
     md << "## Which model fits\n\nEach row: the models fitted to the target's highlight over its incidences and the "
           "thresholds ";
     for (size_t j = 0; j < e.fit->thresholds.size(); ++j) md << (j ? ", " : "") << e.fit->thresholds[j];
-    md << "; the residual is the weighted RMS of ln(fit / target) of the semi-axes (0.01: about 1% off), the rank in "
-          "brackets.\n\n| target |";
+    md << "; ranked by the " << e.fit->rankBy << " residual ("
+       << (e.fit->rankBy == "shape" ? "the weighted RMS of ln(fit / target) of the semi-axes, 0.01: about 1% off"
+                                    : "the RMS of ln(1 + f cos theta_i) between fit and target over the measured "
+                                      "directions, Low et al. 2012")
+       << "), the rank in brackets. Verdict: no_model_fits when the best residual exceeds max(10 x the target's "
+          "resolution, 0.01); tie when the second is within max(resolution, 1e-4) of it.\n\n| target |";
     for (const auto& m : e.fit->models) md << " " << m << " |";
-    md << " best |\n|---|";
+    md << " best | verdict |\n|---|";
     for (size_t k = 0; k < e.fit->models.size(); ++k) md << "---|";
-    md << "---|\n";
+    md << "---|---|\n";
     std::map<std::string, int> wins;
     for (const auto& r : rows) {
         md << "| " << r.value("target", std::string("?")) << " |";
@@ -222,7 +226,8 @@ std::string fitSection(const Experiment& e, const Rows& rows) {
             md << buf;
         }
         const std::string best = r.value("best_model", std::string("-"));
-        md << " " << best << " " << r.value("best_params", std::string("")) << " |\n";
+        md << " " << best << " " << r.value("best_params", std::string("")) << " | "
+           << r.value("verdict", std::string("-")) << " |\n";
         ++wins[best];
     }
     md << "\nFirst place:";

@@ -29,6 +29,10 @@ TEST_CASE("cli::fit: bad input is refused in one line naming the flag, exit 2, n
         {"--target " + (dir / "missing.binary"), "--target: cannot read"},
         {"--model ggx --models phong --fit-anisotropy", "--fit-anisotropy: needs beckmann or ggx"},
         {"--model ggx --roughness -1", "--roughness"},
+        {"--model ggx --rank-by both", "--rank-by: both not in {shape,values}"},
+        {"--model ggx --fit-diffuse yes", "--fit-diffuse: yes not in {auto,on,off}"},
+        {"--brdf " + std::string(HILITE_SOURCE_DIR_STR) + "/experiments/brdfs/ggx.brdf --rank-by values",
+         "--rank-by values: the target has no double evaluation"},
     };
     // An output folder that cannot be made, or a file in its place: refused before anything is fitted. Under a
     // regular file nothing can be made, even as root (/proc/... could be, in a chroot without /proc mounted).
