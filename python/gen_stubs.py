@@ -84,7 +84,7 @@ TOLERANCE_SETTINGS = {"size": "str", "boundary": "Literal['subpixel', 'pixel']",
                       "framing": "Literal['fixed', 'auto']", "renderer": "Literal['cpu', 'gl']"}
 TOLERANCE_CHECK = {"size": "str", "aspect": "float"}
 # experiments/fit.cpp toJson: one object per model
-FIT = {"model": "str", "params": "dict[str, float | str]", "residual": "float | None",
+FIT = {"model": "str", "params": "dict[str, float | str | list[float]]", "residual": "float | None",
        "shape_residual": "float | None", "values_residual": "float | None", "rank": "int", "rank_by": "str",
        "tie": "bool", "verdict": "str", "resolution": "float", "tolerance": "float", "target": "str",
        "evaluations": "int", "value_evaluations": "int", "time_ms": "float", "stop": "str", "thresholds": "list[float]",
@@ -162,6 +162,7 @@ class MachineError(RuntimeError): ...
              "    fit_anisotropy: bool | None = None,\n    fit_f0: bool | None = None,\n"
              "    fit_geometry: str | None = None,\n    fit_fresnel: str | None = None,\n"
              "    fit_diffuse: str | None = None,\n    rank_by: str | None = None,\n"
+             "    fit_color: bool | None = None,\n"
              "    max_evaluations: int | None = None,\n"
              "    scene: Scene | str | os.PathLike[str] | None = None,\n" + keywords(False) +
              ") -> list[FitRow]:\n" + doc(hilite.fit) + "    ...\n\n")

@@ -102,16 +102,16 @@ def render(scene=None, *, maps=False, **params):
 
 
 def fit(target=None, *, models=None, thresholds=None, weights=None, fit_anisotropy=None, fit_f0=None,
-        fit_geometry=None, fit_fresnel=None, fit_diffuse=None, rank_by=None, max_evaluations=None, scene=None,
-        **params):
+        fit_geometry=None, fit_fresnel=None, fit_diffuse=None, rank_by=None, fit_color=None, max_evaluations=None,
+        scene=None, **params):
     """Fits analytic models to a target's BRDF and ranks them: the CLI's `hilite fit --json` in process.
 
     `target`: a MERL .binary table, an RGL .bsdf file or a BRDF Explorer .brdf file (str or os.PathLike), or
     None for a target given by the material keywords (model="ggx", roughness=0.1, ...); `scene` and the other
     keywords (light, camera, measurement: incidence defaults to "0:85:5", size to 256) apply to the target and
     every model. `models`, `thresholds`, `weights`, `fit_anisotropy`, `fit_f0`, `fit_geometry`, `fit_fresnel`,
-    `fit_diffuse`, `rank_by` and `max_evaluations` are the CLI's --models, --thresholds, ...; None takes the
-    library's default, the CLI's (`hilite._hilite.fit_defaults()`). Returns one dict per model, ranked (rank 1
+    `fit_diffuse`, `rank_by`, `fit_color` and `max_evaluations` are the CLI's --models, --thresholds, ...; None
+    takes the library's default, the CLI's (`hilite._hilite.fit_defaults()`). Returns one dict per model, ranked (rank 1
     first): model, params (by registry name), residual (by `rank_by`), shape_residual, values_residual, rank,
     rank_by, tie, verdict ("fits", "tie" or "no_model_fits"), resolution, tolerance, target, evaluations,
     value_evaluations, time_ms, stop, thresholds, weights, incidence_deg, aspect_threshold, target_aspect, aspect
@@ -121,6 +121,7 @@ def fit(target=None, *, models=None, thresholds=None, weights=None, fit_anisotro
     thresholds = d["thresholds"] if thresholds is None else thresholds
     fit_anisotropy = d["fit_anisotropy"] if fit_anisotropy is None else fit_anisotropy
     fit_f0 = d["fit_f0"] if fit_f0 is None else fit_f0
+    fit_color = d["fit_color"] if fit_color is None else fit_color
     max_evaluations = d["max_evaluations"] if max_evaluations is None else max_evaluations
     if target is not None:
         if not isinstance(target, (str, os.PathLike)):
@@ -137,7 +138,7 @@ def fit(target=None, *, models=None, thresholds=None, weights=None, fit_anisotro
     for name, v in (("models", models), ("thresholds", thresholds)):
         if isinstance(v, (str, bytes)) or not hasattr(v, "__iter__"):
             raise TypeError(f"{name}: expected a list, got {type(v).__name__}")
-    for name, v in (("fit_anisotropy", fit_anisotropy), ("fit_f0", fit_f0)):
+    for name, v in (("fit_anisotropy", fit_anisotropy), ("fit_f0", fit_f0), ("fit_color", fit_color)):
         if not isinstance(v, bool):
             raise TypeError(f"{name}: expected True or False, got {type(v).__name__}")
     if isinstance(max_evaluations, bool) or not isinstance(max_evaluations, int) or not 1 <= max_evaluations <= 10000:
@@ -151,7 +152,7 @@ def fit(target=None, *, models=None, thresholds=None, weights=None, fit_anisotro
                        d["fit_geometry"] if fit_geometry is None else str(fit_geometry),
                        d["fit_fresnel"] if fit_fresnel is None else str(fit_fresnel),
                        d["fit_diffuse"] if fit_diffuse is None else str(fit_diffuse),
-                       d["rank_by"] if rank_by is None else str(rank_by), max_evaluations)
+                       d["rank_by"] if rank_by is None else str(rank_by), fit_color, max_evaluations)
 
 
 _KEYWORDS = signature_doc()

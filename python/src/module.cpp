@@ -90,7 +90,7 @@ py::list measureScenes(const std::vector<Items>& scenes) {
 /// `hilite fit --json` in process: one object per model (experiments/fit.hpp), every scene resolved first.
 py::list fitScene(const Items& items, const std::vector<std::string>& models, const std::vector<double>& thresholds,
                   const std::vector<double>& weights, bool anisotropy, bool f0, const std::string& geometry,
-                  const std::string& fresnel, const std::string& diffuse, const std::string& rankBy,
+                  const std::string& fresnel, const std::string& diffuse, const std::string& rankBy, bool color,
                   int maxEvaluations) {
     std::vector<std::string> rows;
     {
@@ -106,6 +106,7 @@ py::list fitScene(const Items& items, const std::vector<std::string>& models, co
         o.fresnel = fresnel;
         o.diffuse = diffuse;
         o.rankBy = rankBy;
+        o.color = color;
         o.maxEvaluations = maxEvaluations;
         experiments::checkFitScenes(values, o);
         const scene::Resolved target = scene::resolve(values);
@@ -394,7 +395,7 @@ PYBIND11_MODULE(_hilite, m) {
     m.def("render", &renderScene, py::arg("items"), py::arg("maps"));
     m.def("fit", &fitScene, py::arg("items"), py::arg("models"), py::arg("thresholds"), py::arg("weights"),
           py::arg("anisotropy"), py::arg("f0"), py::arg("geometry"), py::arg("fresnel"), py::arg("diffuse"),
-          py::arg("rank_by"), py::arg("max_evaluations"));
+          py::arg("rank_by"), py::arg("color"), py::arg("max_evaluations"));
     m.def("fit_defaults", [] {  // the one set of defaults the CLI and experiment files use too
         const experiments::FitOptions o;
         py::dict d;
@@ -406,6 +407,7 @@ PYBIND11_MODULE(_hilite, m) {
         d["fit_fresnel"] = o.fresnel;
         d["fit_diffuse"] = o.diffuse;
         d["rank_by"] = o.rankBy;
+        d["fit_color"] = o.color;
         d["max_evaluations"] = o.maxEvaluations;
         return d;
     });

@@ -50,6 +50,9 @@ std::string paramsText(const nlohmann::ordered_json& p) {
     for (const auto& [k, v] : p.items()) {
         char buf[64];
         if (v.is_string()) std::snprintf(buf, sizeof buf, "%s=%s", k.c_str(), v.get<std::string>().c_str());
+        else if (v.is_array())
+            std::snprintf(buf, sizeof buf, "%s=%.4g,%.4g,%.4g", k.c_str(), v[0].get<double>(), v[1].get<double>(),
+                          v[2].get<double>());
         else std::snprintf(buf, sizeof buf, "%s=%.6g", k.c_str(), v.get<double>());
         s += (s.empty() ? "" : " ") + std::string(buf);
     }
@@ -181,6 +184,9 @@ Action addFit(CLI::App& app) {
                    "off")
         ->capture_default_str()
         ->check(CLI::IsMember(experiments::fitDiffuseChoices()))
+        ->group(g);
+    app.add_flag("--fit-color", f->options.color,
+                 "F0 and the albedo per channel (RGB), refitted by values at the width found")
         ->group(g);
     app.add_option("--rank-by", f->options.rankBy,
                    "the ranking criterion: shape (the highlight's semi-axes) or values (the BRDF over the measured "

@@ -448,7 +448,7 @@ void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     if (!t) return;
     const Fields f(*t, path, "fit",
                    {"models", "thresholds", "weights", "anisotropy", "f0", "geometry", "fresnel", "diffuse", "rank_by",
-                    "max_evaluations"});
+                    "color", "max_evaluations"});
     FitOptions o;
     if (f.node("models")) o.models = f.strings("models");
     if (f.node("thresholds")) o.thresholds = f.numbers("thresholds");
@@ -459,6 +459,7 @@ void parseFit(const toml::table& doc, const std::string& path, Experiment& e) {
     o.fresnel = f.string("fresnel", o.fresnel);
     o.diffuse = f.string("diffuse", o.diffuse);
     o.rankBy = f.string("rank_by", o.rankBy);
+    o.color = f.boolean("color", o.color);
     o.maxEvaluations = wholeNumber(f, "max_evaluations", 1, 10000, o.maxEvaluations);  // documented as an integer
     try {
         checkFitOptions(o);

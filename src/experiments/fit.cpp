@@ -29,13 +29,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The row flags that leave no shape to compare (analysis/highlight.hpp): nothing measured, or a region whose
-/// edge is the frame's (clipped, covers_frame: a diffuse floor above the threshold) or the horizon's (its semi-axes
-/// then follow the BRDF at grazing view, where measured data hold nothing reliable: Ngan et al. 2005 cut MERL at
-/// 80 deg, and a table's bins below the horizon hold no data; a Beckmann table moved such samples by 20%).
-const char* const kUnusable[] = {
-    "no_highlight", "mirror",       "unbounded_at_horizon", "effectively_mirror", "float_overflow", "float_underflow",
-    "clipped",      "covers_frame", "horizon_cut",          "peak_on_horizon",    "no_mirror_lobe"};
+/// The row flags that leave no shape to compare (analysis/highlight.hpp): nothing measured, or no lobe.
+const char* const kUnusable[] = {"no_highlight",   "mirror",          "unbounded_at_horizon", "effectively_mirror",
+                                 "float_overflow", "float_underflow", "no_mirror_lobe"};
+/// The flags of a target's region that is not the highlight's own shape, left out of the fit: its edge is the
+/// frame's (clipped, covers_frame: a diffuse floor above the threshold) or the horizon's (its semi-axes then
+/// follow the BRDF at grazing view, where measured data hold nothing reliable: Ngan et al. 2005 cut MERL at 80
+/// deg, and a table's bins below the horizon hold no data; a Beckmann table moved such samples by 20% against
+/// its generator). A model's sample with them is compared all the same: the flag turns on at a border the fit
+/// must be able to cross.
+const char* const kNotOwnShape[] = {"clipped", "covers_frame", "horizon_cut", "peak_on_horizon"};
 
 /// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0; the values
 /// fit appends the albedo, which the shape fit then holds (albedo, or none when negative).
@@ -47,13 +50,17 @@ struct Space {
     bool fitAlbedo = false;  ///< the values fit varies a Lambertian albedo
     double albedo = -1;      ///< the albedo the model carries (< 0: no diffuse term)
     std::string geometry;    ///< microfacet models' G ("auto": chosen by the values fit)
+    bool rgb = false;        ///< F0 and the albedo per channel (FitOptions::color), in f0Rgb, albedoRgb
+    dvec3 f0Rgb{0.0}, albedoRgb{0.0};
 };
 
 Space spaceOf(const std::string& name, const FitOptions& o) {
     const auto model = brdf::parseModel(name);
-    Space s{*model, "roughness", std::log(1e-3), std::log(2.0), std::log(0.1), false, false, false, -1, ""};
+    Space s{*model, "roughness", std::log(1e-3), std::log(2.0), std::log(0.1), false, false, false,
+            -1,     "",          false,          dvec3(0.0),    dvec3(0.0)};
     if (brdf::usesExponent(*model))
-        s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false, false, -1, ""};
+        s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false, false,
+             -1,     "",         false,         dvec3(0.0),    dvec3(0.0)};
     s.aniso = o.anisotropy && brdf::allowsAnisotropy(*model);
     s.f0 = o.f0 && o.fresnel == "schlick" && brdf::isMicrofacet(*model);
     s.fitAlbedo = o.diffuse != "off";
@@ -81,12 +88,13 @@ std::string angleList(const std::vector<double>& angles) {
 /// A sample from a measurement's numbers and its flags (the row's spelling); not usable without a finite shape.
 FitSample sampleOf(double incidence, double threshold, double major, double minor, double aspect, double peak,
                    const std::vector<std::string>& flags) {
-    FitSample s{incidence, threshold, major, minor, aspect, peak, false, ""};
+    FitSample s{incidence, threshold, major, minor, aspect, peak, false, "", ""};
     std::vector<std::string> bad;
     for (const std::string& f : flags)
         for (const char* u : kUnusable)
             if (f == u) bad.push_back(u);
     s.usable = bad.empty() && s.major > 0 && s.minor > 0 && std::isfinite(s.major) && std::isfinite(s.minor);
+    s.flags = join(flags, ",");
     s.why = bad.empty() && !s.usable ? "no shape" : join(bad, ",");
     return s;
 }
@@ -230,6 +238,8 @@ double residualOf(const FitResult& r, const std::vector<FitSample>& model, bool 
     return weight > 0 ? std::sqrt(sum / weight) : kNaN;
 }
 
+std::string rgbText(const dvec3& c) { return exactText(c.x) + "," + exactText(c.y) + "," + exactText(c.z); }
+
 /// The model's values at x (the space's parameters).
 scene::Values modelValues(const scene::Values& common, const Space& s, const FitOptions& o,
                           const std::vector<double>& x) {
@@ -241,11 +251,11 @@ scene::Values modelValues(const scene::Values& common, const Space& s, const Fit
     if (brdf::isMicrofacet(s.model)) {
         v.set("geometry", s.geometry == "auto" ? "smith" : s.geometry);
         v.set("fresnel", o.fresnel);
-        if (s.f0) v.set("f0", exactText(x[k]));
+        if (s.f0) v.set("f0", s.rgb ? rgbText(s.f0Rgb) : exactText(x[k]));
     }
     if (s.albedo >= 0) {
         v.set("diffuse", "lambert");
-        v.set("albedo", exactText(s.albedo));
+        v.set("albedo", s.rgb ? rgbText(s.albedoRgb) : exactText(s.albedo));
     }
     return v;
 }
@@ -426,6 +436,10 @@ void checkFitScenes(const scene::Values& target, const FitOptions& o) {
             throw InputError(
                 "--rank-by values: the target has no double evaluation (a .brdf file runs as GLSL "
                 "only); rank by shape");
+        if (o.color)
+            throw InputError(
+                "--fit-color: F0 and the albedo per channel are fitted by values, and the target has no "
+                "double evaluation (a .brdf file runs as GLSL only)");
         if (o.diffuse == "on")
             throw InputError(
                 "--fit-diffuse on: the albedo is fitted by values, and the target has no double "
@@ -507,11 +521,68 @@ std::vector<double> fitValues(const scene::Values& common, const Space& s, const
     return bestX;
 }
 
+/// FitOptions::color: F0 and the albedo of the model at x fitted per channel against the target's channel
+/// values, the width and geometry held (BOBYQA, 2 parameters a channel, from the luminance fit's). Sets
+/// s.rgb, s.f0Rgb, s.albedoRgb and returns the RMS over the three channels' values residuals.
+double fitColour(const scene::Values& common, Space& s, const FitOptions& o, const std::vector<double>& x,
+                 const values::Directions& dirs, const std::vector<std::vector<double>>& target, int& evaluations) {
+    scene::Resolved res = scene::resolve(modelValues(common, s, o, x), scene::Purpose::Brdf);
+    scene::dropEnergyTerms(res.scene.brdf);
+    const double f0 = s.f0 ? x.back() : 0.0;
+    s.f0Rgb = dvec3(f0);
+    s.albedoRgb = dvec3(std::max(s.albedo, 0.0));
+    double sum = 0;
+    for (int c = 0; c < 3; ++c) {
+        std::vector<double> y;
+        if (s.f0) y.push_back(f0);
+        if (s.albedo >= 0) y.push_back(s.albedo);
+        auto apply = [&](const std::vector<double>& yv) {
+            brdf::Params p = res.scene.brdf;
+            size_t k = 0;
+            if (s.f0) p.f0 = dvec3(yv[k++]);
+            if (s.albedo >= 0) p.albedo = dvec3(yv[k]);
+            return p;
+        };
+        double best = std::numeric_limits<double>::infinity();
+        std::vector<double> bestY = y;
+        auto objective = [&](const std::vector<double>& yv) {
+            ++evaluations;
+            const double r = values::residual(values::sample(apply(yv), dirs, c), target[size_t(c)]);
+            if (r < best) best = r, bestY = yv;
+            return std::isfinite(r) ? r * r : 1e12;
+        };
+        objective(y);
+        if (!y.empty()) {
+            nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(y.size()));
+            opt.set_lower_bounds(std::vector<double>(y.size(), 0.0));
+            opt.set_upper_bounds(std::vector<double>(y.size(), 1.0));
+            opt.set_initial_step(std::vector<double>(y.size(), 0.02));
+            opt.set_xtol_abs(o.xtolAbs);
+            opt.set_ftol_rel(1e-8);
+            opt.set_maxeval(200);
+            opt.set_min_objective([](const std::vector<double>& yv, std::vector<double>&,
+                                     void* data) { return (*static_cast<decltype(objective)*>(data))(yv); },
+                                  &objective);
+            double value = 0;
+            try {
+                opt.optimize(y, value);
+            } catch (const std::exception&) {  // the best point so far stands
+            }
+        }
+        size_t k = 0;
+        if (s.f0) s.f0Rgb[c] = bestY[k++];
+        if (s.albedo >= 0) s.albedoRgb[c] = bestY[k];
+        sum += best * best;
+    }
+    s.rgb = true;
+    return std::sqrt(sum / 3.0);
+}
+
 /// The target's values at the grid's directions, or empty when it has no double evaluation (a .brdf file).
-std::vector<double> targetValues(const scene::Values& target, const values::Directions& dirs) {
+std::vector<double> targetValues(const scene::Values& target, const values::Directions& dirs, int channel = -1) {
     if (target.given("brdf")) return {};
     scene::Resolved res = scene::resolve(target, scene::Purpose::Brdf);
-    return values::sample(res.scene.brdf, dirs);
+    return values::sample(res.scene.brdf, dirs, channel);
 }
 
 /// The verdict of a ranked result: see fit.hpp.
@@ -535,11 +606,17 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
     const auto targetScenes = sweepScenes(target, r);
     const scene::Values common = withoutMaterial(target);
     std::vector<Space> spaces;
+    auto leaveOut = [](std::vector<FitSample> samples) {  // the target's samples that are not its own shape
+        for (FitSample& s : samples)
+            for (const char* f : kNotOwnShape)
+                if (s.usable && s.flags.find(f) != std::string::npos) s.usable = false, s.why = s.flags;
+        return samples;
+    };
     for (const std::string& m : o.models) spaces.push_back(spaceOf(m, o));
     const values::Directions dirs = values::grid(o.anisotropy);
     const std::vector<double> tv = targetValues(target, dirs);
     r.hasValues = !tv.empty();
-    r.samples = measureSweep(session, targetScenes, r);
+    r.samples = leaveOut(measureSweep(session, targetScenes, r));
     // A threshold whose level underflows float at every angle measures nothing (the region becomes "every pixel
     // above 0", the same for every model: a fit at a search bound ranked first): refused, not fitted around.
     for (size_t j = 0; j < r.thresholds.size(); ++j) {
@@ -563,7 +640,7 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
     if (o.rankBy == "shape") {
         scene::Values finer = target;
         finer.set("size", std::to_string(targetScenes.front().setup.width * 3 / 2));
-        r.resolution = residualOf(r, measureSweep(session, sweepScenes(finer, r), r), false);
+        r.resolution = residualOf(r, leaveOut(measureSweep(session, sweepScenes(finer, r), r)), false);
         if (!std::isfinite(r.resolution)) r.resolution = 0;
     }
 
@@ -662,14 +739,25 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                 fit.valuesResidual = values::residual(values::sample(res.scene.brdf, dirs), tv);
             }
         }
+        if (o.color && r.hasValues && (s.f0 || s.albedo >= 0)) {
+            // Per channel: F0 and the albedo refitted by values at the width found, then the shape measured there.
+            std::vector<std::vector<double>> tc;
+            for (int c = 0; c < 3; ++c) tc.push_back(targetValues(target, dirs, c));
+            fit.valuesResidual = fitColour(common, s, o, bestX, dirs, tc, fit.valueEvaluations);
+            const auto samples = measureSweep(session, sweepScenes(modelValues(common, s, o, bestX), r), r);
+            ++fit.evaluations;
+            best = residualOf(r, samples, s.f0);
+            bestSamples = samples;
+        }
         fit.shapeResidual = best;
         fit.residual = o.rankBy == "values" ? fit.valuesResidual : fit.shapeResidual;
         fit.samples = bestSamples;
         fit.params[s.width] = std::exp(bestX[0]);
         size_t j = 1;
+        auto rgbJson = [](const dvec3& c) { return nlohmann::ordered_json::array({c.x, c.y, c.z}); };
         if (s.aniso) fit.params["roughness_y"] = std::exp(bestX[0] + bestX[j++]);
-        if (s.f0) fit.params["f0"] = bestX[j];
-        if (s.albedo >= 0) fit.params["albedo"] = s.albedo;
+        if (s.f0) fit.params["f0"] = s.rgb ? rgbJson(s.f0Rgb) : nlohmann::ordered_json(bestX[j]);
+        if (s.albedo >= 0) fit.params["albedo"] = s.rgb ? rgbJson(s.albedoRgb) : nlohmann::ordered_json(s.albedo);
         if (brdf::isMicrofacet(s.model)) fit.params["geometry"] = s.geometry;
         fit.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         r.fits.push_back(std::move(fit));

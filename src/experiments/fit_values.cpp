@@ -31,10 +31,11 @@ Directions grid(bool anisotropic) {
     return d;
 }
 
-std::vector<double> sample(const brdf::Params& p, const Directions& d) {
+std::vector<double> sample(const brdf::Params& p, const Directions& d, int channel) {
     std::vector<double> out(d.wi.size());
     for (size_t k = 0; k < out.size(); ++k) {
-        const double f = brdf::luminance(brdf::evaluate(p, d.wi[k], d.wo[k]));
+        const dvec3 rgb = brdf::evaluate(p, d.wi[k], d.wo[k]);
+        const double f = channel < 0 ? brdf::luminance(rgb) : rgb[channel];
         out[k] = std::isfinite(f) && f >= 0 ? d.wi[k].z * f : std::numeric_limits<double>::quiet_NaN();
     }
     return out;

@@ -24,8 +24,9 @@ struct Directions {
 /// The directions above (isotropic: phi_h = 0; anisotropic: four phi_h).
 Directions grid(bool anisotropic);
 
-/// cos(theta_i) x luminance(f) at each direction; NaN where f is not finite or negative (no data).
-std::vector<double> sample(const brdf::Params& p, const Directions& d);
+/// cos(theta_i) x luminance(f) (channel < 0) or f's channel 0..2 at each direction; NaN where f is not finite or
+/// negative (no data).
+std::vector<double> sample(const brdf::Params& p, const Directions& d, int channel = -1);
 
 /// The RMS of ln(1 + model) - ln(1 + target) over the directions where both are numbers (NaN if none).
 double residual(const std::vector<double>& model, const std::vector<double>& target);

@@ -152,7 +152,8 @@ std::string fitText(const FitOptions& o) {
     return t + " thresholds=" + numbersText(o.thresholds) + " weights=" + numbersText(o.weights) +
            " anisotropy=" + std::to_string(o.anisotropy) + " f0=" + std::to_string(o.f0) + " geometry=" + o.geometry +
            " fresnel=" + o.fresnel + " diffuse=" + o.diffuse + " rank_by=" + o.rankBy +
-           " xtol=" + exactText(o.xtolAbs) + " max_evaluations=" + std::to_string(o.maxEvaluations) + "\n";
+           " color=" + std::to_string(o.color) + " xtol=" + exactText(o.xtolAbs) +
+           " max_evaluations=" + std::to_string(o.maxEvaluations) + "\n";
 }
 
 /// [bounces]: every setting of the study (experiments/bounces.hpp BounceSettings).

@@ -147,6 +147,29 @@ TEST_CASE("fit: the defaults recover the generator of a table with Fresnel, mask
     }
 }
 
+TEST_CASE("fit: --fit-color fits F0 and the albedo per channel: gold's F(0) and a red plastic's albedo") {
+    hilite_test::TempDir dir("hilite-fit-color");
+    const brdf::Params gold = scene::resolve(flags("--model ggx --material gold"), scene::Purpose::Brdf).scene.brdf;
+    const dvec3 goldF0 = brdf::fresnel(gold, 1.0);  // linear sRGB: red above 1 (gold is outside the gamut there)
+    experiments::FitOptions o = options("ggx");
+    o.color = true;
+    tabulate("--model ggx --roughness 0.3 --geometry smith --material gold", dir / "gold.binary");
+    const auto g = jsonLines(fit(kSweep, dir / "gold.binary", o));
+    MESSAGE("gold: " << g[0]["params"].dump() << ", F(0) " << goldF0.x << " " << goldF0.y << " " << goldF0.z);
+    REQUIRE(g[0]["params"]["f0"].is_array());
+    for (int c = 0; c < 3; ++c)  // Schlick's F0 is at most 1
+        CHECK_NEAR(g[0]["params"]["f0"][size_t(c)].get<double>() / std::min(goldF0[c], 1.0), 1, 0.05);
+    CHECK_NEAR(g[0]["params"]["roughness"].get<double>() / 0.3, 1, 0.01);
+    tabulate("--model beckmann --roughness 0.15 --geometry smith --f0 0.04 --diffuse lambert --albedo 0.5,0.1,0.05",
+             dir / "red.binary");
+    o.models = {"beckmann"};
+    const auto p = jsonLines(fit(kSweep, dir / "red.binary", o));
+    MESSAGE("red plastic: " << p[0]["params"].dump());
+    const double albedo[3] = {0.5, 0.1, 0.05};
+    for (int c = 0; c < 3; ++c) CHECK_NEAR(p[0]["params"]["albedo"][size_t(c)].get<double>() / albedo[c], 1, 0.05);
+    CHECK_NEAR(p[0]["params"]["roughness"].get<double>() / 0.15, 1, 0.01);
+}
+
 TEST_CASE("fit: a narrow plus a wide lobe gets no_model_fits, and two models within the resolution get tie") {
     hilite_test::TempDir dir("hilite-fit-verdicts");
     // GGX 0.08 plus three times GGX 0.25 (Smith, Schlick 0.04): no single lobe has both the core and the shoulder

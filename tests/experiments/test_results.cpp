@@ -82,7 +82,7 @@ TEST_CASE("fingerprint: every [fit] option is part of it") {
     for (const char* edit :
          {"models = [\"ggx\", \"beckmann\"]", "thresholds = [0.25, 0.5]", "weights = [1, 1, 1, 1, 2]",
           "anisotropy = true\nmodels = [\"ggx\"]", "f0 = false\nmodels = [\"ggx\"]", "geometry = \"smith\"",
-          "fresnel = \"none\"", "diffuse = \"off\"", "rank_by = \"values\"", "max_evaluations = 40"}) {
+          "fresnel = \"none\"", "diffuse = \"off\"", "rank_by = \"values\"", "color = true", "max_evaluations = 40"}) {
         CAPTURE(edit);
         CHECK(firstFingerprint(std::string(kFit) + edit + "\n") != base);
     }

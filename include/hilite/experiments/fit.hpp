@@ -47,8 +47,11 @@ struct FitOptions {
     std::string fresnel = "schlick";  ///< the fitted microfacet models' --fresnel: schlick or none
     std::string diffuse = "auto";     ///< a Lambertian albedo: auto (where the values fit finds one), on, off
     std::string rankBy = "shape";     ///< the ranking criterion: shape or values
-    double xtolAbs = 1e-4;            ///< NLopt's stopping step in log(parameter): 0.01%
-    int maxEvaluations = 80;          ///< per model and criterion
+    /// F0 and the albedo per channel (RGB): refitted by values at the width found (the shape is measured on the
+    /// luminance); params f0 and albedo are then [r, g, b]
+    bool color = false;
+    double xtolAbs = 1e-4;    ///< NLopt's stopping step in log(parameter): 0.01%
+    int maxEvaluations = 80;  ///< per model and criterion
 };
 
 /// The allowed words of FitOptions' choices (the CLI, experiment files and Python refuse others).
@@ -64,7 +67,8 @@ struct FitSample {
     double incidence = 0, threshold = 0;
     double major = 0, minor = 0, aspect = 0, peak = 0;  ///< degrees, as the row's major_deg, minor_deg
     bool usable = false;
-    std::string why;  ///< not usable: the row's flags that rule it out
+    std::string why;    ///< not usable: the row's flags that rule it out
+    std::string flags;  ///< all the row's flags, comma-separated
 };
 
 struct ModelFit {
