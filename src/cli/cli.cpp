@@ -48,7 +48,9 @@ int run(int argc, char** argv) {
         "the reflectance terms' physics: albedo, fresnel, normalization (tables / JSON), strip (PNG), tabulate (MERL)",
         &addBrdf);
     add("explain", "print the resolved scene, its active effects and the GLSL it compiles", &addExplain);
-    add("fit", "fit analytic models (phong, blinn, beckmann, ggx, ...) to a measured or given highlight and rank them",
+    add("fit",
+        "fit analytic models (phong, blinn, beckmann, ggx, ...) to a measured or given BRDF by its highlight's shape "
+        "and its values, rank them and say whether any fits",
         &addFit);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);

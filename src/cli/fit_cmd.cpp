@@ -1,4 +1,4 @@
-// `hilite fit`: fit analytic models to a target's highlight (a MERL table, a .brdf file or a built-in model)
+// `hilite fit`: fit analytic models to a target (a MERL or RGL table, a .brdf file or a built-in model)
 // over a sweep of incidence and thresholds, and rank them (experiments/fit.hpp).
 
 #include "cli/commands.hpp"
@@ -202,6 +202,7 @@ Action addFit(CLI::App& app) {
     app.add_flag("--json", f->json, "one JSON object per model instead of the table")->group("Output");
     app.footer(
         "Example: hilite fit --target gold-metallic-paint.binary --models phong,blinn,beckmann,ggx -o results/fit\n"
+        "         hilite fit --target paper_white_rgb.bsdf --lobe mirror --rank-by values\n"
         "         hilite fit --model ggx --roughness 0.1 --models phong,ggx --json");
     return [f] { return runFit(*f); };
 }

@@ -212,6 +212,7 @@ analysis::Shape analyse(const ViewFn& view, const PinholeCamera& cam, const Pixe
         ++m.renders;
         t0 = Clock::now();
         if (part) keepPart(img, cam, *part);
+        if (setup.keepImage) m.image = img;
         analysis::Shape shape = analysis::measureImage(img.data.data(), img.width, img.height, options);
         if (luminance) keepLuminance(img, *luminance);
         m.measure_ms += msSince(t0);

@@ -129,8 +129,9 @@ TEST_CASE("fit: the defaults recover the generator of a table with Fresnel, mask
         CAPTURE(c.args);
         const std::string file = dir / (c.model + ".binary");
         tabulate(c.args, file);
-        // Every 5 deg: the F0 that balances Schlick against gold's conductor depends on the angles the peaks weigh.
-        const experiments::FitResult r = fit("--incidence 0:80:5 --size 128", file, experiments::FitOptions{});
+        // Every 10 deg: the F0 that balances Schlick against gold's conductor depends on the angles the peaks
+        // weigh (every 20 deg gave 0.867, every 10 deg 0.827, every 5 deg 0.814, against F(0)'s luminance 0.802).
+        const experiments::FitResult r = fit("--incidence 0:80:10 --size 128", file, experiments::FitOptions{});
         const auto fits = jsonLines(r);
         MESSAGE(c.model << ": " << fits[0]["model"] << " " << fits[0]["params"].dump() << " shape "
                         << fits[0]["shape_residual"] << " values " << fits[0]["values_residual"] << ", verdict "
@@ -306,8 +307,10 @@ TEST_CASE("fit: a folder of tables is measured and fitted holding at most 3 tabl
         std::ofstream(dir / (name + ".toml"))
             << "[experiment]\nname = \"held\"\n[scene.light]\nincidence = \"0:60:60\"\n[scene.camera]\nsize = "
                "\"64\"\n[[sweep]]\nkey = \"material.measured\"\nfolder = \""
-            << name << "\"\n[fit]\nmodels = [\"ggx\"]\nthresholds = [0.5]\n";
-        brdf::merl::tablesHeld(true);  // the peak from here on
+            << name
+            << "\"\n[fit]\nmodels = [\"ggx\"]\nthresholds = [0.5]\n"
+               "f0 = false\ngeometry = \"implicit\"\ndiffuse = \"off\"\n";  // the lobe's width alone: quick
+        brdf::merl::tablesHeld(true);                                       // the peak from here on
         runExperiment(dir / (name + ".toml"), dir / (name + "_out"));
         std::ifstream rows(std::filesystem::path(dir / (name + "_out")) / "results.jsonl");
         int n = 0;

@@ -4,6 +4,7 @@
 
 #include "hilite/analysis/highlight.hpp"
 #include "hilite/core/camera.hpp"
+#include "hilite/core/image.hpp"
 #include "hilite/render/scene.hpp"
 #include "hilite/scene/setup.hpp"
 
@@ -36,6 +37,9 @@ struct Measurement {
     /// the final measurement's error.
     std::optional<analysis::Shape> halfResolution;
     int halfWidth = 0, halfHeight = 0;
+    /// MeasureSetup::keepImage: the final render as analysed, (L, u, v, w) per pixel (the crop when cropped;
+    /// the maps make it self-describing); empty otherwise
+    ImageF image;
 };
 
 /// The lobe of a scene as a function of chart coordinates, evaluated by the double twin. Like everything

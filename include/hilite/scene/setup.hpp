@@ -27,6 +27,9 @@ struct MeasureSetup {
     int supersample = 1;  ///< n: the final frame is rendered n x n times, jittered (analysis/supersample.hpp)
     bool cpu = false;     ///< measure(): the double twin renders the view on the CPU instead of GL
     int threads = 0;      ///< CPU path: threads (0: every core)
+    /// measure(): Measurement::image keeps the final render (one sample per pixel, GL or CPU), so a caller can
+    /// measure it again at other levels without rendering it again (experiments/fit.cpp's thresholds)
+    bool keepImage = false;
 };
 std::ostream& operator<<(std::ostream&, const MeasureSetup&);
 
