@@ -113,8 +113,8 @@ def fit(target=None, *, models=None, thresholds=None, weights=None, fit_anisotro
     `fit_diffuse`, `rank_by`, `fit_color` and `max_evaluations` are the CLI's --models, --thresholds, ...; None
     takes the library's default, the CLI's (`hilite._hilite.fit_defaults()`). Returns one dict per model, ranked (rank 1
     first): model, params (by registry name), residual (by `rank_by`), shape_residual, values_residual, rank,
-    rank_by, tie, verdict ("fits", "tie" or "no_model_fits"), resolution, tolerance, target, evaluations,
-    value_evaluations, time_ms, stop, thresholds, weights, incidence_deg, aspect_threshold, target_aspect, aspect
+    rank_by, tie, verdict ("fits", "tie", "no_model_fits" or "target_unresolved"), resolution, tolerance, target,
+    evaluations, value_evaluations, time_ms, stop, thresholds, weights, incidence_deg, aspect_threshold, target_aspect, aspect
     and aspect_residual (per angle; None where a sample has no shape). Raises InputError as the CLI refuses."""
     d = _hilite.fit_defaults()
     models = d["models"] if models is None else models

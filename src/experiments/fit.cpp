@@ -52,15 +52,16 @@ struct Space {
     std::string geometry;    ///< microfacet models' G ("auto": chosen by the values fit)
     bool rgb = false;        ///< F0 and the albedo per channel (FitOptions::color), in f0Rgb, albedoRgb
     dvec3 f0Rgb{0.0}, albedoRgb{0.0};
+    double f0Held = -1;  ///< F0 set by the values fit and held by the shape fit (f0 false then; < 0: none)
 };
 
 Space spaceOf(const std::string& name, const FitOptions& o) {
     const auto model = brdf::parseModel(name);
     Space s{*model, "roughness", std::log(1e-3), std::log(2.0), std::log(0.1), false, false, false,
-            -1,     "",          false,          dvec3(0.0),    dvec3(0.0)};
+            -1,     "",          false,          dvec3(0.0),    dvec3(0.0),    -1};
     if (brdf::usesExponent(*model))
         s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false, false,
-             -1,     "",         false,         dvec3(0.0),    dvec3(0.0)};
+             -1,     "",         false,         dvec3(0.0),    dvec3(0.0),      -1};
     s.aniso = o.anisotropy && brdf::allowsAnisotropy(*model);
     s.f0 = o.f0 && o.fresnel == "schlick" && brdf::isMicrofacet(*model);
     s.fitAlbedo = o.diffuse != "off";
@@ -253,6 +254,7 @@ scene::Values modelValues(const scene::Values& common, const Space& s, const Fit
         v.set("geometry", s.geometry == "auto" ? "smith" : s.geometry);
         v.set("fresnel", o.fresnel);
         if (s.f0) v.set("f0", s.rgb ? rgbText(s.f0Rgb) : exactText(x[k]));
+        else if (s.f0Held >= 0) v.set("f0", s.rgb ? rgbText(s.f0Rgb) : exactText(s.f0Held));
     }
     if (s.albedo >= 0) {
         v.set("diffuse", "lambert");
@@ -529,18 +531,19 @@ double fitColour(const scene::Values& common, Space& s, const FitOptions& o, con
                  const values::Directions& dirs, const std::vector<std::vector<double>>& target, int& evaluations) {
     scene::Resolved res = scene::resolve(modelValues(common, s, o, x), scene::Purpose::Brdf);
     scene::dropEnergyTerms(res.scene.brdf);
-    const double f0 = s.f0 ? x.back() : 0.0;
+    const bool hasF0 = s.f0 || s.f0Held >= 0;
+    const double f0 = s.f0 ? x.back() : std::max(s.f0Held, 0.0);
     s.f0Rgb = dvec3(f0);
     s.albedoRgb = dvec3(std::max(s.albedo, 0.0));
     double sum = 0;
     for (int c = 0; c < 3; ++c) {
         std::vector<double> y;
-        if (s.f0) y.push_back(f0);
+        if (hasF0) y.push_back(f0);
         if (s.albedo >= 0) y.push_back(s.albedo);
         auto apply = [&](const std::vector<double>& yv) {
             brdf::Params p = res.scene.brdf;
             size_t k = 0;
-            if (s.f0) p.f0 = dvec3(yv[k++]);
+            if (hasF0) p.f0 = dvec3(yv[k++]);
             if (s.albedo >= 0) p.albedo = dvec3(yv[k]);
             return p;
         };
@@ -571,7 +574,7 @@ double fitColour(const scene::Values& common, Space& s, const FitOptions& o, con
             }
         }
         size_t k = 0;
-        if (s.f0) s.f0Rgb[c] = bestY[k++];
+        if (hasF0) s.f0Rgb[c] = bestY[k++];
         if (s.albedo >= 0) s.albedoRgb[c] = bestY[k];
         sum += best * best;
     }
@@ -594,7 +597,10 @@ void judge(FitResult& r) {
     for (ModelFit& m : r.fits) m.tie = false;
     for (size_t k = 1; k < r.fits.size(); ++k)
         if (r.fits[k].residual - best < r.tieMargin) r.fits[k].tie = r.fits.front().tie = true;
-    r.verdict = !(best <= r.tolerance) ? "no_model_fits" : r.fits.front().tie ? "tie" : "fits";
+    r.verdict = r.resolution > kMaxResolution ? "target_unresolved"
+                : !(best <= r.tolerance)      ? "no_model_fits"
+                : r.fits.front().tie          ? "tie"
+                                              : "fits";
 }
 
 }  // namespace
@@ -651,11 +657,7 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
         ModelFit fit;
         fit.model = o.models[k];
         fit.valuesResidual = kNaN;
-        // Seeded by the values fit, the shape fit starts near its answer: smaller first steps.
-        const double scale = r.hasValues ? 0.4 : 1.0;
-        std::vector<double> lo{s.lo}, hi{s.hi}, step{0.05 * scale};
-        if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1 * scale);
-        if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02 * scale);
+        const bool f0Fitted = s.f0;
         std::vector<std::vector<double>> starts = startingPoints(session, common, s, o, r);
         if (r.hasValues) {
             // The values fit seeds the shape fit (and sets the albedo, which the shape fit holds). With geometry
@@ -681,6 +683,11 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                 x.pop_back();
                 if (o.diffuse == "auto" && s.albedo < kMinFittedAlbedo) s.albedo = -1;  // no diffuse part
             }
+            if (s.f0) {  // F0 sets the magnitude, which the semi-axes do not see: the values fit's is held
+                s.f0Held = x.back();
+                x.pop_back();
+                s.f0 = false;
+            }
             starts = {x};
         } else {
             s.fitAlbedo = false;
@@ -699,6 +706,12 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                 s.geometry = chosen;
             }
         }
+        // Seeded by the values fit, the shape fit starts near its answer (smaller first steps) and varies the
+        // width alone (and the anisotropy); without values (a .brdf file) it fits F0 against the peaks too.
+        const double scale = r.hasValues ? 0.4 : 1.0;
+        std::vector<double> lo{s.lo}, hi{s.hi}, step{0.05 * scale};
+        if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1 * scale);
+        if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02 * scale);
         double best = std::numeric_limits<double>::infinity();
         std::vector<double> bestX = starts.front();
         std::vector<FitSample> bestSamples;
@@ -742,7 +755,7 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                 fit.valuesResidual = values::residual(values::sample(res.scene.brdf, dirs), tv);
             }
         }
-        if (o.color && r.hasValues && (s.f0 || s.albedo >= 0)) {
+        if (o.color && r.hasValues && (f0Fitted || s.albedo >= 0)) {
             // Per channel: F0 and the albedo refitted by values at the width found, then the shape measured there.
             std::vector<std::vector<double>> tc;
             for (int c = 0; c < 3; ++c) tc.push_back(targetValues(target, dirs, c));
@@ -759,7 +772,7 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
         size_t j = 1;
         auto rgbJson = [](const dvec3& c) { return nlohmann::ordered_json::array({c.x, c.y, c.z}); };
         if (s.aniso) fit.params["roughness_y"] = std::exp(bestX[0] + bestX[j++]);
-        if (s.f0) fit.params["f0"] = s.rgb ? rgbJson(s.f0Rgb) : nlohmann::ordered_json(bestX[j]);
+        if (f0Fitted) fit.params["f0"] = s.rgb ? rgbJson(s.f0Rgb) : nlohmann::ordered_json(s.f0 ? bestX[j] : s.f0Held);
         if (s.albedo >= 0) fit.params["albedo"] = s.rgb ? rgbJson(s.albedoRgb) : nlohmann::ordered_json(s.albedo);
         if (brdf::isMicrofacet(s.model)) fit.params["geometry"] = s.geometry;
         fit.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

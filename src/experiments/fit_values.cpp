@@ -3,8 +3,10 @@
 #include "brdf/merl.hpp"
 #include "hilite/brdf/evaluate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace hilite::experiments::values {
 
@@ -33,11 +35,21 @@ Directions grid(bool anisotropic) {
 
 std::vector<double> sample(const brdf::Params& p, const Directions& d, int channel) {
     std::vector<double> out(d.wi.size());
-    for (size_t k = 0; k < out.size(); ++k) {
-        const dvec3 rgb = brdf::evaluate(p, d.wi[k], d.wo[k]);
-        const double f = channel < 0 ? brdf::luminance(rgb) : rgb[channel];
-        out[k] = std::isfinite(f) && f >= 0 ? d.wi[k].z * f : std::numeric_limits<double>::quiet_NaN();
-    }
+    auto run = [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+            const dvec3 rgb = brdf::evaluate(p, d.wi[k], d.wo[k]);
+            const double f = channel < 0 ? brdf::luminance(rgb) : rgb[channel];
+            out[k] = std::isfinite(f) && f >= 0 ? d.wi[k].z * f : std::numeric_limits<double>::quiet_NaN();
+        }
+    };
+    // Every core: a values fit evaluates the grid a few hundred times while nothing else runs.
+    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 16);
+    const size_t chunk = (out.size() + threads - 1) / threads;
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads && t * chunk < out.size(); ++t)
+        pool.emplace_back(run, t * chunk, std::min(out.size(), (t + 1) * chunk));
+    run(0, std::min(out.size(), chunk));
+    for (std::thread& t : pool) t.join();
     return out;
 }
 

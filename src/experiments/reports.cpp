@@ -208,7 +208,8 @@ std::string fitSection(const Experiment& e, const Rows& rows) {
                                     : "the RMS of ln(1 + f cos theta_i) between fit and target over the measured "
                                       "directions, Low et al. 2012")
        << "), the rank in brackets. Verdict: no_model_fits when the best residual exceeds max(10 x the target's "
-          "resolution, 0.01); tie when the second is within max(resolution, 1e-4) of it.\n\n| target |";
+          "resolution, 0.01); tie when the second is within max(resolution, 1e-4) of it; target_unresolved when the "
+          "resolution itself exceeds 0.02.\n\n| target |";
     for (const auto& m : e.fit->models) md << " " << m << " |";
     md << " best | verdict |\n|---|";
     for (size_t k = 0; k < e.fit->models.size(); ++k) md << "---|";

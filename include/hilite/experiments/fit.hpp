@@ -23,8 +23,9 @@
 //
 // Verdicts (FitResult::verdict): the resolution rho of the ranking criterion is what the target's own numbers
 // move by when nothing but the measurement changes (shape: the target measured at the fit's size and at 1.5x;
-// values: 0). "no_model_fits" when the best residual exceeds max(10 rho, 0.01); "tie" when the second model's
-// residual is within max(rho, 1e-4) of the first's; else "fits".
+// values: 0). "target_unresolved" when rho exceeds 0.02 (the target's own shape is not settled at this size);
+// else "no_model_fits" when the best residual exceeds max(10 rho, 0.01); "tie" when the second model's residual
+// is within max(rho, 1e-4) of the first's; else "fits".
 
 #include "hilite/measurement/session.hpp"
 #include "hilite/scene/resolve.hpp"
@@ -58,6 +59,10 @@ struct FitOptions {
 const std::vector<std::string>& fitGeometries();
 const std::vector<std::string>& fitDiffuseChoices();
 const std::vector<std::string>& fitCriteria();
+
+/// Above this resolution the target's own shape is not settled at the fit's size (its semi-axes move by more
+/// than 2% between the size and 1.5x it): verdict "target_unresolved", whatever the residuals.
+constexpr double kMaxResolution = 0.02;
 
 /// Below this fitted albedo the target has no diffuse part (diffuse "auto"): the model carries none.
 constexpr double kMinFittedAlbedo = 1e-3;
@@ -99,7 +104,7 @@ struct FitResult {
     double resolution = 0;           ///< rho of the ranking criterion (see the verdicts above)
     double tolerance = 0;            ///< max(10 rho, 0.01): no model fits above it
     double tieMargin = 0;            ///< max(rho, 1e-4)
-    std::string verdict;             ///< "fits", "tie" or "no_model_fits"
+    std::string verdict;             ///< "fits", "tie", "no_model_fits" or "target_unresolved"
 };
 
 /// Checks the options (InputError naming the flag): models known and fittable, thresholds in (0, 1),
