@@ -345,6 +345,38 @@ std::string stopText(nlopt::result res) {
     }
 }
 
+/// The limits of one BOBYQA run (Powell 2009, NLopt's LN_BOBYQA).
+struct Search {
+    std::vector<double> lo, hi, step;
+    double xtolAbs = 1e-4, ftolRel = 1e-8;
+    int maxEvaluations = 200;
+};
+
+/// Minimises `f` (a callable of the point) from `x` (clamped into the bounds) and says why it stopped. A stop by
+/// round-off or force is a stop like the others: the caller keeps the best point it saw.
+template <class F>
+std::string bobyqa(F& f, std::vector<double> x, const Search& s) {
+    for (size_t i = 0; i < x.size(); ++i) x[i] = std::clamp(x[i], s.lo[i], s.hi[i]);
+    nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(x.size()));
+    opt.set_lower_bounds(s.lo);
+    opt.set_upper_bounds(s.hi);
+    opt.set_initial_step(s.step);
+    opt.set_xtol_abs(s.xtolAbs);
+    opt.set_ftol_rel(s.ftolRel);
+    opt.set_maxeval(s.maxEvaluations);
+    opt.set_min_objective(
+        [](const std::vector<double>& xv, std::vector<double>&, void* data) { return (*static_cast<F*>(data))(xv); },
+        &f);
+    double value = 0;
+    try {
+        return stopText(opt.optimize(x, value));
+    } catch (const nlopt::roundoff_limited&) {
+        return "roundoff limited";
+    } catch (const nlopt::forced_stop&) {
+        return "forced stop";
+    }
+}
+
 /// The scene's material in words, for the result.
 std::string targetText(const scene::Values& v) {
     if (v.given("measured")) return "measured:" + v.text("measured");
@@ -505,21 +537,7 @@ std::vector<double> fitValues(const scene::Values& common, const Space& s, const
                 const double v = objective(x);
                 if (v < startValue) startValue = v, start = x;
             }
-    nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(start.size()));
-    opt.set_lower_bounds(lo);
-    opt.set_upper_bounds(hi);
-    opt.set_initial_step(step);
-    opt.set_xtol_abs(o.xtolAbs);
-    opt.set_ftol_rel(1e-8);
-    opt.set_maxeval(std::max(o.maxEvaluations, 200));  // cheap: no rendering
-    opt.set_min_objective([](const std::vector<double>& xv, std::vector<double>&,
-                             void* data) { return (*static_cast<decltype(objective)*>(data))(xv); },
-                          &objective);
-    double value = 0;
-    try {
-        opt.optimize(start, value);
-    } catch (const std::exception&) {  // roundoff limited, forced stop: the best point so far stands
-    }
+    bobyqa(objective, start, {lo, hi, step, o.xtolAbs, 1e-8, std::max(o.maxEvaluations, 200)});  // no rendering
     residual = best;
     return bestX;
 }
@@ -556,23 +574,11 @@ double fitColour(const scene::Values& common, Space& s, const FitOptions& o, con
             return std::isfinite(r) ? r * r : 1e12;
         };
         objective(y);
-        if (!y.empty()) {
-            nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(y.size()));
-            opt.set_lower_bounds(std::vector<double>(y.size(), 0.0));
-            opt.set_upper_bounds(std::vector<double>(y.size(), 1.0));
-            opt.set_initial_step(std::vector<double>(y.size(), 0.02));
-            opt.set_xtol_abs(o.xtolAbs);
-            opt.set_ftol_rel(1e-8);
-            opt.set_maxeval(200);
-            opt.set_min_objective([](const std::vector<double>& yv, std::vector<double>&,
-                                     void* data) { return (*static_cast<decltype(objective)*>(data))(yv); },
-                                  &objective);
-            double value = 0;
-            try {
-                opt.optimize(y, value);
-            } catch (const std::exception&) {  // the best point so far stands
-            }
-        }
+        const size_t n = y.size();
+        if (n)
+            bobyqa(objective, y,
+                   {std::vector<double>(n, 0.0), std::vector<double>(n, 1.0), std::vector<double>(n, 0.02), o.xtolAbs,
+                    1e-8, 200});
         size_t k = 0;
         if (hasF0) s.f0Rgb[c] = bestY[k++];
         if (s.albedo >= 0) s.albedoRgb[c] = bestY[k];
@@ -722,28 +728,10 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
             if (res < best || bestSamples.empty()) best = res, bestX = xv, bestSamples = samples;
             return std::isfinite(res) ? res * res : 1e12;  // the mean square, as the values fit
         };
-        auto optimize = [&](std::vector<double> x) {
-            for (size_t i = 0; i < x.size(); ++i) x[i] = std::clamp(x[i], lo[i], hi[i]);
-            nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(x.size()));
-            opt.set_lower_bounds(lo);
-            opt.set_upper_bounds(hi);
-            opt.set_initial_step(step);
-            opt.set_xtol_abs(o.xtolAbs);
-            // 1e-3 of the mean square: the residual to 5e-4 of itself, and a flat residual (phong against a
-            // microfacet lobe) stops before xtol
-            opt.set_ftol_rel(1e-3);
-            opt.set_maxeval(o.maxEvaluations);
-            opt.set_min_objective([](const std::vector<double>& xv, std::vector<double>&,
-                                     void* data) { return (*static_cast<decltype(objective)*>(data))(xv); },
-                                  &objective);
-            double value = 0;
-            try {
-                fit.stop = stopText(opt.optimize(x, value));
-            } catch (const nlopt::roundoff_limited&) {
-                fit.stop = "roundoff limited";
-            } catch (const nlopt::forced_stop&) {
-                fit.stop = "forced stop";
-            }
+        // ftol 1e-3 of the mean square: the residual to 5e-4 of itself, and a flat residual (phong against a
+        // microfacet lobe) stops before xtol.
+        auto optimize = [&](const std::vector<double>& x) {
+            fit.stop = bobyqa(objective, x, {lo, hi, step, o.xtolAbs, 1e-3, o.maxEvaluations});
         };
         if (o.rankBy == "values") {
             objective(starts.front());  // the shape residual at the values fit's parameters

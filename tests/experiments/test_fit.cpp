@@ -129,8 +129,6 @@ TEST_CASE("fit: the defaults recover the generator of a table with Fresnel, mask
         CAPTURE(c.args);
         const std::string file = dir / (c.model + ".binary");
         tabulate(c.args, file);
-        // Every 10 deg: the F0 that balances Schlick against gold's conductor depends on the angles the peaks
-        // weigh (every 20 deg gave 0.867, every 10 deg 0.827, every 5 deg 0.814, against F(0)'s luminance 0.802).
         const experiments::FitResult r = fit("--incidence 0:80:10 --size 128", file, experiments::FitOptions{});
         const auto fits = jsonLines(r);
         MESSAGE(c.model << ": " << fits[0]["model"] << " " << fits[0]["params"].dump() << " shape "
