@@ -38,7 +38,8 @@ std::vector<double> exactFresnel(const Params& p, double c) {
 
 void ReflectanceChannels::fresnel(double cosTheta_d, double* out) const {
     const size_t n = size();
-    const double x = std::sqrt(std::clamp(cosTheta_d, 0.0, 1.0)) * (kChannelTableSize - 1);
+    const double cd = cosTheta_d > 0.0 ? std::min(cosTheta_d, 1.0) : 0.0;  // NaN reads as grazing, not as an int
+    const double x = std::sqrt(cd) * (kChannelTableSize - 1);
     const int i = std::min(int(x), kChannelTableSize - 2);
     const double t = x - double(i);
     const double* a = table.data() + size_t(i) * n;

@@ -169,8 +169,8 @@ double D_Tabulated(double NoH, double sin2h, const NdfTable& t) {
 }
 
 double Lambda_Tabulated(double cosTheta, const NdfTable& t) {
-    if (cosTheta >= 1.0) return 0.0;  // normal incidence: nothing is masked
-    const double c = std::max(cosTheta, 0.0);
+    if (cosTheta >= 1.0) return 0.0;                   // normal incidence: nothing is masked
+    const double c = cosTheta > 0.0 ? cosTheta : 0.0;  // NaN reads as grazing, never converted to an int
     const double x = rad2deg(std::atan2(std::sqrt(std::max(0.0, 1.0 - c * c)), c)) * (NdfTable::kLambdaRows - 1) / 90.0;
     const int k = std::min(int(x), NdfTable::kLambdaRows - 2);
     const double f = x - k;

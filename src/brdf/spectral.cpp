@@ -182,7 +182,9 @@ const std::vector<dvec3>& Spectrum::fresnelTable() const {
 dvec3 F_SpectralTable(double cosTheta_i, const Spectrum& s) {
     // The same steps as the GLSL (shaders/brdf_gl.glsl, F_SpectralTable), in double.
     const std::vector<dvec3>& t = s.fresnelTable();
-    const double x = std::sqrt(std::clamp(cosTheta_i, 0.0, 1.0)) * (kFresnelTableSize - 1);
+    // Not a number (a direction that is not one) reads as grazing: no float-to-int conversion of a NaN.
+    const double c = cosTheta_i > 0.0 ? std::min(cosTheta_i, 1.0) : 0.0;
+    const double x = std::sqrt(c) * (kFresnelTableSize - 1);
     const int i = std::min(int(x), kFresnelTableSize - 2);
     const double f = x - double(i);
     return t[size_t(i)] * (1.0 - f) + t[size_t(i) + 1] * f;

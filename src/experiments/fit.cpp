@@ -588,10 +588,12 @@ double fitColour(const scene::Values& common, Space& s, const FitOptions& o, con
     return std::sqrt(sum / 3.0);
 }
 
-/// The target's values at the grid's directions, or empty when it has no double evaluation (a .brdf file).
+/// The target's values at the grid's directions, or empty when it has none (a .brdf file; a bump field).
 std::vector<double> targetValues(const scene::Values& target, const values::Directions& dirs, int channel = -1) {
     if (target.given("brdf")) return {};
-    scene::Resolved res = scene::resolve(target, scene::Purpose::Brdf);
+    scene::Resolved res = scene::resolve(target);
+    // A bump field's appearance is not its material's BRDF: there is no BRDF to compare values with.
+    if (res.scene.surface.bumps) return {};
     return values::sample(res.scene.brdf, dirs, channel);
 }
 
@@ -651,9 +653,18 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                               : ""));
     // The shape criterion's resolution: the target's own semi-axes at 1.5x the size against the fit's size.
     if (o.rankBy == "shape") {
+        // Half as many pixels again, within the size limit (16384) and the memory check: else 3/4 of the size.
+        const int w = targetScenes.front().setup.width, h = targetScenes.front().setup.height;
         scene::Values finer = target;
-        finer.set("size", std::to_string(targetScenes.front().setup.width * 3 / 2));
-        r.resolution = residualOf(r, leaveOut(measureSweep(session, sweepScenes(finer, r), r)), false);
+        finer.set("size", std::to_string(w * 3 / 2) + "x" + std::to_string(h * 3 / 2));
+        std::vector<scene::Resolved> finerScenes;
+        try {
+            finerScenes = sweepScenes(finer, r);
+        } catch (const InputError&) {
+            finer.set("size", std::to_string(std::max(1, w * 3 / 4)) + "x" + std::to_string(std::max(1, h * 3 / 4)));
+            finerScenes = sweepScenes(finer, r);
+        }
+        r.resolution = residualOf(r, leaveOut(measureSweep(session, finerScenes, r)), false);
         if (!std::isfinite(r.resolution)) r.resolution = 0;
     }
 
@@ -883,10 +894,13 @@ bool writeFitFolder(const std::string& dir, const FitResult& r, std::string& why
     a.ylabel = "aspect (minor / major)";
     PlotSpec b = a;
     b.file = "fit_residual.png";
-    b.title = "aspect residual (fit - target) at threshold " + fmt(r.aspectThreshold);
+    b.title = "aspect residual (fit - target) at threshold " + fmt(r.aspectThreshold) + " (verdict: " + r.verdict + ")";
     b.y = "residual";
     b.ylabel = "aspect residual";
     b.key = "top left";
+    a.colourOrder = {"target"};  // one colour per model in both plots, the target's first
+    for (const ModelFit& m : r.fits) a.colourOrder.push_back(m.model + " (rank " + std::to_string(m.rank) + ")");
+    b.colourOrder = a.colourOrder;
     std::string w1, w2;
     const bool ok1 = plot(dir, a, aspectRows, w1), ok2 = plot(dir, b, residualRows, w2);
     why = !ok1 ? w1 : w2;

@@ -186,6 +186,7 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     std::map<std::string, bool> drawn;   // the series has a point without flags
     std::map<std::string, bool> gapped;  // the series' last line is a gap: one blank line, never two (gnuplot's
                                          // block separator)
+    std::map<std::string, std::map<double, double>> points;  // drawn (x, y) per series, to find coinciding lines
     std::ostringstream flaggedBlock;
     std::map<std::string, int> flagCounts;
     int flagged = 0;
@@ -211,6 +212,26 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
         blocks[key] << r[spec.x].dump() << " " << r[spec.y].dump() << "\n";
         gapped[key] = false;
         drawn[key] = true;
+        if (r[spec.x].is_number() && r[spec.y].is_number())
+            points[key][r[spec.x].get<double>()] = r[spec.y].get<double>();
+    }
+    // A line drawn over another (the same x, y within 0.5% of the plot's height: under 3 of its 600 pixels) hides
+    // it: its title says so, rather than leave the reader to count the colours.
+    std::map<std::string, std::string> coincides;
+    {
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        for (const auto& [k, ps] : points)
+            for (const auto& [x, y] : ps) lo = std::min(lo, y), hi = std::max(hi, y);
+        const double tol = 0.005 * (hi > lo ? hi - lo : std::max(1.0, std::abs(hi)));
+        for (size_t i = 1; i < order.size(); ++i)
+            for (size_t j = 0; j < i && !coincides.count(order[i]); ++j) {
+                const auto &a = points[order[i]], &b = points[order[j]];
+                if (a.size() < 2 || a.size() != b.size()) continue;
+                bool same = true;
+                for (auto ia = a.begin(), ib = b.begin(); same && ia != a.end(); ++ia, ++ib)
+                    same = ia->first == ib->first && std::abs(ia->second - ib->second) <= tol;
+                if (same) coincides[order[i]] = order[j];
+            }
     }
     std::string data;
     // A series with every row flagged has no point of its own: "NaN NaN" keeps its block (a block of blank lines
@@ -269,10 +290,14 @@ bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohma
     static const char* const colours[] = {"#332288", "#88CCEE", "#44AA99", "#117733", "#999933", "#DDCC77",
                                           "#CC6677", "#882255", "#AA4499", "#EE6677", "#4477AA", "#BBBBBB"};
     constexpr size_t nColours = sizeof colours / sizeof colours[0];
+    size_t unlisted = spec.colourOrder.size();
     for (size_t i = 0; i < order.size(); ++i) {
+        const auto listed = std::find(spec.colourOrder.begin(), spec.colourOrder.end(), order[i]);
+        const size_t c = listed != spec.colourOrder.end() ? size_t(listed - spec.colourOrder.begin()) : unlisted++;
         gp << (first ? "" : ", ") << quoteGnuplot(dat) << " index " << i
-           << " using 1:2 with linespoints pt 7 ps 0.5 lc rgb '" << colours[i % nColours] << "' dt " << 1 + i / nColours
-           << " title " << quoteGnuplot(order[i]);
+           << " using 1:2 with linespoints pt 7 ps 0.5 lc rgb '" << colours[c % nColours] << "' dt " << 1 + c / nColours
+           << " title "
+           << quoteGnuplot(coincides.count(order[i]) ? order[i] + " (on " + coincides[order[i]] + ")" : order[i]);
         first = false;
     }
     const size_t theory0 = order.size() + (flagged ? 1 : 0);

@@ -21,9 +21,14 @@ struct PlotSpec {
     std::string key = "below";        ///< legend position, one of plotKeys(); by default below the plot, off the data
     bool logx = false, logy = false;  ///< logarithmic axes
     bool polar = false;               ///< x an angle in degrees from the normal (up), y the radius
+    /// Series names in the order that gives them their colours, so that plots of one folder draw a series in
+    /// one colour (a fit's model in fit_aspect.png and fit_residual.png); a series not listed takes the next
+    /// colour after them, in first-seen order.
+    std::vector<std::string> colourOrder;
 };
 
-/// Writes dir/<spec.file> from the rows (skipping rows whose y is null). Returns false (and says why in
+/// Writes dir/<spec.file> from the rows (skipping rows whose y is null). A series whose line lies on an earlier
+/// one's (the same x values, y within 0.5% of the plot's height) is titled "NAME (on OTHER)". Returns false (and says why in
 /// `why`) when gnuplot is missing or fails; the data file and the script beside it are kept either way.
 bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohmann::json>& rows, std::string& why);
 

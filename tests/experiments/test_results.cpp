@@ -229,3 +229,28 @@ TEST_CASE("a plot draws flagged rows as a separate, labelled series off the line
     CHECK(gp.find("index 1 using 1:2 with points pt 6") != std::string::npos);
     CHECK(gp.find("title 'flagged (2): horizon_cut'") != std::string::npos);
 }
+
+TEST_CASE("a plot says which lines lie on others") {
+    // Before, Blinn-Phong's and Beckmann's fitted aspects hid each other and the legend did not say so.
+    hilite_test::TempDir dir("hilite-plot-coincide");
+    std::vector<nlohmann::json> rows;
+    for (int i = 0; i < 5; ++i)
+        for (const char* m : {"phong", "blinn", "beckmann"}) {
+            nlohmann::json r;
+            r["incidence_deg"] = 20 * i;
+            r["model"] = m;
+            // phong stays at 1; blinn and beckmann 1e-4 apart on a plot 0.4 high: one line
+            r["aspect"] = std::string(m) == "phong" ? 1.0 : 1.0 - 0.1 * i + (std::string(m) == "blinn" ? 1e-4 : 0.0);
+            rows.push_back(r);
+        }
+    experiments::PlotSpec spec;
+    spec.file = "aspect.png", spec.title = "t", spec.x = "incidence_deg", spec.y = "aspect", spec.series = "model";
+    std::string why;
+    experiments::plot(dir.path.string(), spec, rows, why);
+    std::ifstream gpIn(std::string(dir / "aspect.gp"));
+    const std::string gp((std::istreambuf_iterator<char>(gpIn)), std::istreambuf_iterator<char>());
+    INFO(gp);
+    CHECK(gp.find("title 'beckmann (on blinn)'") != std::string::npos);
+    CHECK(gp.find("title 'blinn'") != std::string::npos);
+    CHECK(gp.find("title 'phong'") != std::string::npos);  // apart from both
+}

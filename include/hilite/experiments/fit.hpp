@@ -22,7 +22,8 @@
 // fitted Schlick F0, and a Lambertian albedo where the target has a diffuse part (FitOptions).
 //
 // Verdicts (FitResult::verdict): the resolution rho of the ranking criterion is what the target's own numbers
-// move by when nothing but the measurement changes (shape: the target measured at the fit's size and at 1.5x;
+// move by when nothing but the measurement changes (shape: the target measured at the fit's size and at 1.5x,
+// or 3/4 where 1.5x passes the size limit;
 // values: 0). "target_unresolved" when rho exceeds 0.02 (the target's own shape is not settled at this size);
 // else "no_model_fits" when the best residual exceeds max(10 rho, 0.01); "tie" when the second model's residual
 // is within max(rho, 1e-4) of the first's; else "fits".
