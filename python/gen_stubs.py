@@ -27,6 +27,8 @@ def kw_type(p, sweep):
         t = "bool"
     elif kind == "path":
         t = "str | os.PathLike[str]"
+    elif kind == "text":
+        t = "str"
     elif kind == "rgb":
         t = "float | tuple[float, float, float] | Sequence[float]"
     elif kind == "angles":
@@ -35,13 +37,13 @@ def kw_type(p, sweep):
         t = "int | tuple[int, int] | str"
     else:  # list
         return "Mapping[str, Any] | Sequence[str] | str | None = None"
-    if sweep and kind in ("number", "integer", "choice", "angles", "path", "switch"):
+    if sweep and kind in ("number", "integer", "choice", "angles", "path", "switch", "text"):
         t += f" | Sequence[{'float' if kind in ('number', 'integer', 'angles') else 'Any'}] | npt.NDArray[Any]"
     return t + " | None = None"
 
 
 # A parameter column's value by the parameter's kind (scene::parameterColumns): a non-finite number is None.
-COLUMN_TYPES = {"number": "float | None", "integer": "int", "choice": "str", "switch": "bool", "path": "str",
+COLUMN_TYPES = {"number": "float | None", "integer": "int", "choice": "str", "switch": "bool", "path": "str", "text": "str",
                 "rgb": "float | list[float]", "angles": "float", "size": "str", "list": "str"}
 
 _FLOAT = "float | None"

@@ -305,3 +305,67 @@ INLINE HalfVector halfVector(VEC3 wi, VEC3 wo) {
     return hv;
 }
 //@end
+
+//@block Lobe_ABC needs common HalfVector F_Dielectric G_CookTorrance
+// Low, Kronander, Ynnerman & Unger 2012 ("BRDF models for accurate and efficient rendering of glossy surfaces"),
+// the ABC model as fitted to MERL: f_s = F(eta) A G_CT / ((1 + B (1 - cos theta_h))^C pi cos_i cos_o), F exact
+// unpolarized dielectric, G_CT the V-cavity (dj_brdf's abc::eval). A per channel; (1 + x)^-C as exp(-C log(1 + x)).
+INLINE VEC3 Lobe_ABC(HalfVector hv, VEC3 wi, VEC3 wo, VEC3 A, REAL B, REAL C, VEC3 eta) {
+    if (!hv.valid) return VEC3(0.0);
+    REAL s = exp(-C * log(1.0 + B * hv.oneMinusNoH)) * G_CookTorrance(hv.NoH, wo.z, wi.z, hv.VoH) * INV_PI /
+             (wi.z * wo.z);
+    VEC3 F = VEC3(F_Dielectric(hv.VoH, eta.x), F_Dielectric(hv.VoH, eta.y), F_Dielectric(hv.VoH, eta.z));
+    return A * F * s;
+}
+//@end
+
+//@block Lobe_SGD needs common HalfVector angleFromSinCos
+// Bagher, Soler & Holzschuch 2012 ("Accurate fitting of measured reflectances using a Shifted Gamma micro-facet
+// distribution"), one channel: f_s = rho_s F D G1(wi) G1(wo) / (pi cos_i cos_o) (dj_brdf's sgd::eval), with
+// D = K exp(-a) / (pi a^p cos^4 theta_h), a = alpha + tan^2 theta_h / alpha; K normalizes D (sgdNormalization).
+INLINE REAL D_SGD(REAL NoH, REAL sin2h, REAL alpha, REAL p, REAL K) {
+    if (NoH <= 0.0) return 0.0;  // back-facing microfacet
+    REAL cos2 = NoH * NoH;
+    REAL a = alpha + sin2h / (cos2 * alpha);
+    REAL e = exp(-a);
+    if (e == 0.0) return 0.0;  // h near the horizon: cos2^2 underflows only where e has (as D_Beckmann)
+    return K * e / (PI * exp(p * log(a)) * cos2 * cos2);
+}
+// F = f0 - f1 cos theta_d + (1 - cos theta_d)^5 (1 - f0): Schlick's with a linear term (f1 = 0: Schlick's).
+INLINE REAL F_SGD(REAL VoH, REAL f0, REAL f1) {
+    REAL c = clamp(1.0 - VoH, 0.0, 1.0);
+    REAL c2 = c * c;
+    return f0 - VoH * f1 + c2 * c2 * c * (1.0 - f0);
+}
+// G1 = clamp(1 + lambda (1 - exp(c max(0, theta - theta0)^k)), 0, 1), theta the angle of w from the normal.
+INLINE REAL G1_SGD(VEC3 w, REAL theta0, REAL c, REAL k, REAL lambda) {
+    REAL t = angleFromSinCos(sqrt(w.x * w.x + w.y * w.y), w.z) - theta0;
+    if (t <= 0.0 || c == 0.0) return 1.0;  // below theta0 nothing is masked (and c = 0 would be 0 * inf)
+    return clamp(1.0 + lambda * (1.0 - exp(c * exp(k * log(t)))), 0.0, 1.0);
+}
+INLINE REAL Lobe_SGD(HalfVector hv, VEC3 wi, VEC3 wo, REAL rhoS, REAL alpha, REAL p, REAL K, REAL f0, REAL f1,
+                     REAL lambda, REAL c, REAL k, REAL theta0) {
+    if (!hv.valid) return 0.0;
+    return rhoS * F_SGD(hv.VoH, f0, f1) * D_SGD(hv.NoH, hv.sin2h, alpha, p, K) * G1_SGD(wi, theta0, c, k, lambda) *
+           G1_SGD(wo, theta0, c, k, lambda) * INV_PI / (wi.z * wo.z);
+}
+//@end
+
+//@block Lobe_Lafortune needs common
+// One Lafortune lobe (Lafortune et al. 1997) as Ngan, Durand & Matusik 2005 fit it to MERL, without rho_s:
+// (n+2)/(2 pi) max(0, u)^n, u = (C_xy (ix ox + iy oy) + C_z iz oz) / M, M = max(|C_xy|, |C_z|) (the normalization
+// that reproduces their published lobes, docs/literature.md). 1 - u from d = wo - mirror(wi), as Phong's:
+// 1 - u = ((M + C_xy) - (C_xy + C_z) iz oz - C_xy |d|^2 / 2) / M, exact digits for the mirror lobe C_xy = -C_z
+// near its peak; below u = 1/2 u itself keeps them (1 - u there cancels instead).
+INLINE REAL Lobe_Lafortune(VEC3 wi, VEC3 wo, REAL Cxy, REAL Cz, REAL n) {
+    REAL M = max(max(Cxy, -Cxy), max(Cz, -Cz));
+    if (M == 0.0) return 0.0;  // no lobe (resolve refuses C = 0)
+    REAL u = (Cxy * (wi.x * wo.x + wi.y * wo.y) + Cz * (wi.z * wo.z)) / M;
+    REAL k = (n + 2.0) * (0.5 * INV_PI);
+    if (u <= 0.0) return n == 0.0 ? k : 0.0;  // max(0, u)^n
+    if (u < 0.5) return k * exp(n * log(u));
+    VEC3 d = wo - VEC3(-wi.x, -wi.y, wi.z);
+    REAL oneMinusU = ((M + Cxy) - (Cxy + Cz) * (wi.z * wo.z) - Cxy * 0.5 * dot(d, d)) / M;
+    return k * powCosStable(max(oneMinusU, 0.0), n);
+}
+//@end

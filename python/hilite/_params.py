@@ -63,6 +63,10 @@ def scalar_text(p, value):
         if not isinstance(value, (bool, np.bool_)):
             raise _type_error(name, "True or False", value)
         return "true" if value else "false"
+    if kind == "text":
+        if not isinstance(value, str):
+            raise _type_error(name, "a string", value)
+        return value
     if kind == "path":
         if not isinstance(value, (str, os.PathLike)):
             raise _type_error(name, "a file name (str or os.PathLike)", value)

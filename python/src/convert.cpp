@@ -34,6 +34,7 @@ const char* kindName(scene::Kind k) {
         case scene::Kind::Angles: return "angles";
         case scene::Kind::Size: return "size";
         case scene::Kind::List: return "list";
+        case scene::Kind::Text: return "text";
     }
     return "";
 }

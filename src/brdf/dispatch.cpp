@@ -39,7 +39,21 @@ const Row& find(const std::vector<Keyed<Key, Row>>& rows, const Key& key, const 
 
 const char* const kAnisoUniforms[] = {"vec2 uAlpha", "vec2 uTangent"};  // alpha_x, alpha_y; cos, sin of the angle
 
-// ---- Reflection lobes ----
+/// SGD's GLSL call: Lobe_SGD per channel, each with its own parameters (the published fits differ by channel).
+std::string sgdCall() {
+    std::string s = "vec3(";
+    for (const char* c : {"x", "y", "z"}) {
+        s += std::string(*c == 'x' ? "" : ", ") + "Lobe_SGD(hv, wi, wo";
+        for (const char* u : {"uSgdRhoS", "uSgdAlpha", "uSgdP", "uSgdNorm", "uSgdF0", "uSgdF1", "uSgdLambda", "uSgdC",
+                              "uSgdK", "uSgdTheta0"})
+            s += std::string(", ") + u + "." + c;
+        s += ")";
+    }
+    return s + ")";
+}
+const std::string kSgdCall = sgdCall();
+
+// ---- Reflection lobes and the literature's whole models ----
 const std::vector<Keyed<Model, LobeRow>> kLobes = {
     {Model::Phong,
      {{"Phong_Normalized",
@@ -48,7 +62,7 @@ const std::vector<Keyed<Model, LobeRow>> kLobes = {
        {"float uExponent"},
        [](const Params& p, const dvec3& wi, const dvec3& wo) {
            const dvec3 d = wo - dvec3(-wi.x, -wi.y, wi.z);
-           return Phong_Normalized(0.5 * glm::dot(d, d), p.exponent);
+           return dvec3(Phong_Normalized(0.5 * glm::dot(d, d), p.exponent));
        }},
       "vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2"}},
     {Model::PhongClassic,
@@ -58,7 +72,7 @@ const std::vector<Keyed<Model, LobeRow>> kLobes = {
        {"float uExponent"},
        [](const Params& p, const dvec3& wi, const dvec3& wo) {
            const dvec3 d = wo - dvec3(-wi.x, -wi.y, wi.z);
-           return Phong_Classic(0.5 * glm::dot(d, d), p.exponent);
+           return dvec3(Phong_Classic(0.5 * glm::dot(d, d), p.exponent));
        }},
       "vec3 d = wo - vec3(-wi.x, -wi.y, wi.z);  // wo - reflect(wi): 1 - cos = |d|^2 / 2"}},
     {Model::Retro,
@@ -68,9 +82,43 @@ const std::vector<Keyed<Model, LobeRow>> kLobes = {
        {"float uExponent"},
        [](const Params& p, const dvec3& wi, const dvec3& wo) {
            const dvec3 d = wo - wi;
-           return Retro_Normalized(0.5 * glm::dot(d, d), p.exponent);
+           return dvec3(Retro_Normalized(0.5 * glm::dot(d, d), p.exponent));
        }},
       "vec3 d = wo - wi;  // 1 - cos(beta) = |d|^2 / 2"}},
+    {Model::ABC,
+     {{"Lobe_ABC",
+       {},
+       "Lobe_ABC(hv, wi, wo, uAbcA, uAbcB, uAbcC, uEta)",
+       {"vec3 uAbcA", "float uAbcB", "float uAbcC", "vec3 uEta"},
+       [](const Params& p, const dvec3& wi, const dvec3& wo) {
+           return Lobe_ABC(halfVector(wi, wo), wi, wo, p.abcA, p.abcB, p.abcC, p.eta);
+       }},
+      "HalfVector hv = halfVector(wi, wo);"}},
+    {Model::SGD,
+     {{"Lobe_SGD",
+       {},
+       kSgdCall.c_str(),
+       {"vec3 uSgdRhoS", "vec3 uSgdAlpha", "vec3 uSgdP", "vec3 uSgdNorm", "vec3 uSgdF0", "vec3 uSgdF1",
+        "vec3 uSgdLambda", "vec3 uSgdC", "vec3 uSgdK", "vec3 uSgdTheta0"},
+       [](const Params& p, const dvec3& wi, const dvec3& wo) {
+           const HalfVector hv = halfVector(wi, wo);
+           const SgdParams& g = p.sgd;
+           dvec3 f;
+           for (int c = 0; c < 3; ++c)
+               f[c] = Lobe_SGD(hv, wi, wo, g.rhoS[c], g.alpha[c], g.p[c], sgdNormalization(g.alpha[c], g.p[c]), g.f0[c],
+                               g.f1[c], g.lambda[c], g.c[c], g.k[c], g.theta0[c]);
+           return f;
+       }},
+      "HalfVector hv = halfVector(wi, wo);"}},
+    {Model::Lafortune,
+     {{"Lobe_Lafortune",
+       {},
+       "uLafortuneRhoS * Lobe_Lafortune(wi, wo, uLafortuneCxy, uLafortuneCz, uExponent)",
+       {"vec3 uLafortuneRhoS", "float uLafortuneCxy", "float uLafortuneCz", "float uExponent"},
+       [](const Params& p, const dvec3& wi, const dvec3& wo) {
+           return p.lafortuneRhoS * Lobe_Lafortune(wi, wo, p.lafortuneCxy, p.lafortuneCz, p.exponent);
+       }},
+      ""}},
 };
 
 // ---- NDFs, keyed by (model, anisotropic) ----

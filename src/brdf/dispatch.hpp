@@ -22,9 +22,10 @@ struct TermRow {
     Fn cpp;                             ///< the C++ twin of the expression
 };
 
-/// Reflection lobes (Phong, classic Phong, retro): `glsl` is the value from `d` (set by `setup`), wi, wo.
-struct LobeRow : TermRow<double (*)(const Params&, const dvec3& wi, const dvec3& wo)> {
-    const char* setup;  ///< GLSL statement setting vec3 d
+/// Reflection lobes (Phong, classic Phong, retro) and the literature's models (abc, sgd, lafortune, each with its
+/// own F and G): `glsl` is the value from what `setup` sets (d, hv), wi, wo.
+struct LobeRow : TermRow<dvec3 (*)(const Params&, const dvec3& wi, const dvec3& wo)> {
+    const char* setup;  ///< GLSL statement setting what the call reads (vec3 d, HalfVector hv; "" for none)
 };
 /// D(h): hv the half vector, ht = h in the tangent frame (anisotropic rows only).
 using DistributionRow = TermRow<double (*)(const Params&, const HalfVector& hv, const dvec3& ht)>;
@@ -46,7 +47,7 @@ bool anisotropicTerms(const Params& p);
 /// Smith geometry (correlated or separable): a Lambda row is called.
 bool usesSmith(const Params& p);
 
-/// The rows a BRDF calls. lobeRow: Phong, PhongClassic, Retro. distributionRow, lambdaRow: microfacet
+/// The rows a BRDF calls. lobeRow: Phong, PhongClassic, Retro, ABC, SGD, Lafortune. distributionRow, lambdaRow: microfacet
 /// models. Throws std::logic_error for a model without such a row.
 const LobeRow& lobeRow(Model m);
 const DistributionRow& distributionRow(const Params& p);

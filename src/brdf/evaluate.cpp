@@ -45,7 +45,7 @@ dvec3 evaluateSpecular(const Params& p, const dvec3& wi, const dvec3& wo) {
     if (p.measured) return p.measured->evaluate(wi, wo);  // the table is the whole BRDF (multilinear, brdf/merl.hpp)
     if (p.rgl) return p.rgl->evaluate(wi, wo);            // an RGL material, indexed by the light (brdf/rgl.hpp)
     if (p.model == Model::None) return dvec3(0.0);
-    if (!isMicrofacet(p.model)) return dvec3(lobeRow(p.model).cpp(p, wi, wo));  // Phong, classic Phong, retro
+    if (!isMicrofacet(p.model)) return lobeRow(p.model).cpp(p, wi, wo);  // reflection lobes, the literature's models
     const HalfVector hv = halfVector(wi, wo);
     if (!hv.valid) return dvec3(0.0);
     return microfacet(p, hv, wi, wo) * fresnel(p, hv.VoH);

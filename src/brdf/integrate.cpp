@@ -272,7 +272,10 @@ double lobeWidth(const Params& p) {
     double w = 0.5 * kPi;
     if (usesExponent(p.model)) w = std::sqrt(2.0 / (p.exponent + 2.0));
     else if (p.model == Model::Tabulated && p.ndfTable) w = p.ndfTable->halfWidth;
-    else if (p.model != Model::None) w = std::atan(std::min(p.alphaX(), p.alphaY()));
+    else if (p.model == Model::ABC) w = p.abcB * p.abcC > 0.0 ? 1.0 / std::sqrt(p.abcB * p.abcC) : w;  // exp(-BC t^2/2)
+    else if (p.model == Model::SGD) {  // exp(-tan^2 / alpha) a^-p: sqrt(alpha) wide, alpha where a^-p falls first
+        for (int c = 0; c < 3; ++c) w = std::min(w, std::min(p.sgd.alpha[c], std::sqrt(p.sgd.alpha[c])));
+    } else if (p.model != Model::None) w = std::atan(std::min(p.alphaX(), p.alphaY()));
     // 1e-6: n = 1e8 would give 1.4e-4 anyway; the floor only keeps the first panel of a degenerate
     // width non-empty. pi/2: the hemisphere.
     return std::clamp(w, 1e-6, 0.5 * kPi);
@@ -313,9 +316,11 @@ dvec3 albedo(const Params& p, double thetaDeg, double phiDeg) {
                     : diffuseAlbedo(p, wi);
     if (p.multiscatter != Multiscatter::None)
         rho += energyAlbedo(wi, [&](const dvec3& a, const dvec3& b) { return evaluateMultiscatter(p, a, b); });
-    if (isMicrofacet(p.model) || p.isMeasured())  // a table over half vectors: integrated over h too
+    // A table over half vectors, and the literature's microfacet models: integrated over h too.
+    if (isMicrofacet(p.model) || p.isMeasured() || p.model == Model::ABC || p.model == Model::SGD)
         rho += microfacetAlbedo(p, wi);
-    else if (p.model == Model::Phong || p.model == Model::PhongClassic || p.model == Model::Retro)
+    else if (p.model == Model::Phong || p.model == Model::PhongClassic || p.model == Model::Retro ||
+             p.model == Model::Lafortune)
         rho += reflectionLobeAlbedo(p, wi);
     return rho;
 }

@@ -25,8 +25,9 @@ std::vector<std::string> names(const E (&all)[N]) {
     return out;
 }
 
-constexpr Model kModels[] = {Model::Phong, Model::PhongClassic, Model::Blinn, Model::Gaussian, Model::Beckmann,
-                             Model::GGX,   Model::None,         Model::Retro, Model::Tabulated};
+constexpr Model kModels[] = {Model::Phong,     Model::PhongClassic, Model::Blinn, Model::Gaussian,
+                             Model::Beckmann,  Model::GGX,          Model::None,  Model::Retro,
+                             Model::Tabulated, Model::ABC,          Model::SGD,   Model::Lafortune};
 constexpr Fresnel kFresnels[] = {Fresnel::None, Fresnel::Schlick, Fresnel::Dielectric, Fresnel::Conductor,
                                  Fresnel::Spectral};
 constexpr Geometry kGeometries[] = {Geometry::None, Geometry::Implicit, Geometry::CookTorrance,
@@ -52,6 +53,9 @@ const char* toString(Model m) {
         case Model::None: return "none";
         case Model::Retro: return "retro";
         case Model::Tabulated: return "tabulated";
+        case Model::ABC: return "abc";
+        case Model::SGD: return "sgd";
+        case Model::Lafortune: return "lafortune";
     }
     return "?";
 }
@@ -108,8 +112,10 @@ bool isMicrofacet(Model m) {
            m == Model::Tabulated;
 }
 bool usesExponent(Model m) {
-    return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn || m == Model::Retro;
+    return m == Model::Phong || m == Model::PhongClassic || m == Model::Blinn || m == Model::Retro ||
+           m == Model::Lafortune;
 }
+bool isLiterature(Model m) { return m == Model::ABC || m == Model::SGD || m == Model::Lafortune; }
 bool allowsAnisotropy(Model m) { return m == Model::Beckmann || m == Model::GGX; }
 bool isDelta(const Params& p) {
     if (!isMicrofacet(p.model) || usesExponent(p.model)) return false;  // an exponent is finite (<= 1e8)
@@ -132,7 +138,15 @@ std::ostream& operator<<(std::ostream& os, const Params& p) {
     else if (p.model == Model::Tabulated && p.ndfTable)
         os << " ndf_table=" << p.ndfTable->file << " rows=" << p.ndfTable->theta.size()
            << " normalization=" << p.ndfTable->normalization;
-    else if (p.model != Model::None) os << " roughness=" << p.roughness;
+    else if (p.model == Model::ABC)
+        printRgb(os << " B=" << p.abcB << " C=" << p.abcC, "A", p.abcA), printRgb(os, "eta", p.eta);
+    else if (p.model == Model::SGD) {
+        printRgb(os, "rho_s", p.sgd.rhoS), printRgb(os, "alpha", p.sgd.alpha), printRgb(os, "p", p.sgd.p);
+        printRgb(os, "f0", p.sgd.f0), printRgb(os, "f1", p.sgd.f1), printRgb(os, "lambda", p.sgd.lambda);
+        printRgb(os, "c", p.sgd.c), printRgb(os, "k", p.sgd.k), printRgb(os, "theta0", p.sgd.theta0);
+    } else if (p.model != Model::None) os << " roughness=" << p.roughness;
+    if (p.model == Model::Lafortune)
+        printRgb(os << " Cxy=" << p.lafortuneCxy << " Cz=" << p.lafortuneCz, "rho_s", p.lafortuneRhoS);
     if (p.anisotropic() && allowsAnisotropy(p.model))
         os << " roughness-y=" << p.alphaY() << " tangent-angle=" << p.tangentAngleDeg;
     if (isMicrofacet(p.model)) {

@@ -37,6 +37,7 @@ std::string typeName(scene::Kind k) {
         case scene::Kind::Angles: return "DEG|LIST|RANGE";
         case scene::Kind::Size: return "PX|WxH";
         case scene::Kind::List: return "NAME=VALUE";
+        case scene::Kind::Text: return "NAME";
     }
     return "";
 }

@@ -40,19 +40,38 @@ const char* const kUnusable[] = {"no_highlight",   "mirror",          "unbounded
 /// must be able to cross.
 const char* const kNotOwnShape[] = {"clipped", "covers_frame", "horizon_cut", "peak_on_horizon"};
 
-/// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness), then F0; the values
-/// fit appends the albedo, which the shape fit then holds (albedo, or none when negative).
+/// What a model's fit varies: x[0] = ln(width parameter), then ln(roughness_y / roughness) or the literature's
+/// second shape parameter, then the amplitude (Schlick's F0, or the literature's height in log); the values fit
+/// appends the albedo, which the shape fit then holds (albedo, or none when negative).
 struct Space {
     brdf::Model model;
-    const char* width;     ///< "exponent" or "roughness"
-    double lo, hi, guess;  ///< bounds and a start for ln(width)
-    bool aniso, f0;
+    const char* width;       ///< "exponent", "roughness", "abc_b", "sgd_alpha"
+    double lo, hi, guess;    ///< bounds and a start for ln(width)
+    bool aniso, f0;          ///< f0: the amplitude is fitted (see `amplitude`)
     bool fitAlbedo = false;  ///< the values fit varies a Lambertian albedo
     double albedo = -1;      ///< the albedo the model carries (< 0: no diffuse term)
     std::string geometry;    ///< microfacet models' G ("auto": chosen by the values fit)
     bool rgb = false;        ///< F0 and the albedo per channel (FitOptions::color), in f0Rgb, albedoRgb
     dvec3 f0Rgb{0.0}, albedoRgb{0.0};
-    double f0Held = -1;  ///< F0 set by the values fit and held by the shape fit (f0 false then; < 0: none)
+    double f0Held = -1;  ///< amplitude set by the values fit and held by the shape fit (f0 false then; < 0: none)
+    /// The amplitude's parameter: "f0" (in [0, 1]), or the literature's height (abc_a, sgd_rho_s, lafortune_rho_s:
+    /// fitted in log, positive without bound)
+    const char* amplitude = "f0";
+    /// The literature's second shape parameter (abc_c in log, sgd_p linear), fitted with the width; "" for none.
+    const char* shape = "";
+    double shapeLo = 0, shapeHi = 0, shapeStart = 0;
+    bool shapeLog = false;
+    bool widerWhenLarger = true;  ///< roughness, sgd_alpha; false for an exponent and abc_b
+
+    bool literature() const { return brdf::isLiterature(model); }
+    bool logAmplitude() const { return literature(); }
+    bool hasShape() const { return *shape != 0; }
+    /// The amplitude's value at its coordinate.
+    double amplitudeAt(double x) const { return logAmplitude() ? std::exp(x) : x; }
+    double amplitudeCoordinate(double v) const { return logAmplitude() ? std::log(std::max(v, 1e-300)) : v; }
+    double amplitudeLo() const { return logAmplitude() ? std::log(1e-8) : 0.0; }
+    double amplitudeHi() const { return logAmplitude() ? std::log(1e8) : 1.0; }
+    double shapeAt(double x) const { return shapeLog ? std::exp(x) : x; }
 };
 
 Space spaceOf(const std::string& name, const FitOptions& o) {
@@ -62,11 +81,44 @@ Space spaceOf(const std::string& name, const FitOptions& o) {
     if (brdf::usesExponent(*model))
         s = {*model, "exponent", std::log(1.0), std::log(1e6), std::log(100.0), false, false, false,
              -1,     "",         false,         dvec3(0.0),    dvec3(0.0),      -1};
+    s.widerWhenLarger = !brdf::usesExponent(*model);
     s.aniso = o.anisotropy && brdf::allowsAnisotropy(*model);
     s.f0 = o.f0 && o.fresnel == "schlick" && brdf::isMicrofacet(*model);
+    switch (*model) {  // the literature's models: each fits its height always, its own F and G held
+        case brdf::Model::ABC:
+            s.width = "abc_b", s.lo = std::log(1.0), s.hi = std::log(1e9), s.guess = std::log(1e4);
+            s.widerWhenLarger = false;
+            s.shape = "abc_c", s.shapeLo = std::log(0.01), s.shapeHi = std::log(20.0), s.shapeStart = 0.0;
+            s.shapeLog = true;
+            s.amplitude = "abc_a", s.f0 = true;
+            break;
+        case brdf::Model::SGD:
+            s.width = "sgd_alpha", s.lo = std::log(1e-6), s.hi = std::log(5.0), s.guess = std::log(0.01);
+            s.shape = "sgd_p", s.shapeLo = 0.0, s.shapeHi = 3.0, s.shapeStart = 0.5;
+            s.amplitude = "sgd_rho_s", s.f0 = true;
+            break;
+        case brdf::Model::Lafortune: s.amplitude = "lafortune_rho_s", s.f0 = true; break;
+        default: break;
+    }
     s.fitAlbedo = o.diffuse != "off";
     s.geometry = o.geometry;
     return s;
+}
+
+/// Sets a fitted parameter of p (the fields the registry entry of that name writes: one place per name here).
+void setParam(brdf::Params& p, const std::string& name, const dvec3& v) {
+    if (name == "exponent") p.exponent = v.x;
+    else if (name == "roughness") p.roughness = v.x;
+    else if (name == "abc_b") p.abcB = v.x;
+    else if (name == "abc_c") p.abcC = v.x;
+    else if (name == "sgd_alpha") p.sgd.alpha = v;
+    else if (name == "sgd_p") p.sgd.p = v;
+    else if (name == "f0") p.f0 = v;
+    else if (name == "abc_a") p.abcA = v;
+    else if (name == "sgd_rho_s") p.sgd.rhoS = v;
+    else if (name == "lafortune_rho_s") p.lafortuneRhoS = v;
+    else if (name == "albedo") p.albedo = v;
+    else throw std::logic_error("fit: no field for parameter " + name);
 }
 
 /// A scene's values without its material: the light, camera and measurement keys every model shares.
@@ -250,6 +302,11 @@ scene::Values modelValues(const scene::Values& common, const Space& s, const Fit
     v.set(s.width, exactText(std::exp(x[0])));
     size_t k = 1;
     if (s.aniso) v.set("roughness_y", exactText(std::exp(x[0] + x[k++])));
+    if (s.hasShape()) v.set(s.shape, exactText(s.shapeAt(x[k++])));
+    if (s.literature()) {
+        if (s.f0) v.set(s.amplitude, s.rgb ? rgbText(s.f0Rgb) : exactText(s.amplitudeAt(x[k])));
+        else if (s.f0Held >= 0) v.set(s.amplitude, s.rgb ? rgbText(s.f0Rgb) : exactText(s.f0Held));
+    }
     if (brdf::isMicrofacet(s.model)) {
         v.set("geometry", s.geometry == "auto" ? "smith" : s.geometry);
         v.set("fresnel", o.fresnel);
@@ -267,7 +324,8 @@ scene::Values modelValues(const scene::Values& common, const Space& s, const Fit
 std::vector<double> pointAt(const Space& s, double w) {
     std::vector<double> x{w};
     if (s.aniso) x.push_back(0.0);
-    if (s.f0) x.push_back(0.04);
+    if (s.hasShape()) x.push_back(s.shapeStart);
+    if (s.f0) x.push_back(s.logAmplitude() ? 0.0 : 0.04);
     return x;
 }
 
@@ -288,12 +346,11 @@ double startingWidth(const scene::Values& common, const Space& s, const FitOptio
     scene::Resolved res = scene::resolve(v);
     scene::dropEnergyTerms(res.scene.brdf);  // the search sets the roughness directly (scene/resolve.hpp)
     double lo = s.lo, hi = s.hi;
-    const bool exponent = brdf::usesExponent(s.model);
     for (int i = 0; i < 60; ++i) {
         const double mid = 0.5 * (lo + hi);
-        (exponent ? res.scene.brdf.exponent : res.scene.brdf.roughness) = std::exp(mid);
+        setParam(res.scene.brdf, s.width, dvec3(std::exp(mid)));
         const double w = rad2deg(measurement::twinHalfWidth(res.scene, target->threshold));
-        ((w > target->major) == exponent ? lo : hi) = mid;
+        ((w > target->major) != s.widerWhenLarger ? lo : hi) = mid;
     }
     return 0.5 * (lo + hi);
 }
@@ -316,7 +373,23 @@ std::vector<std::vector<double>> startingPoints(measurement::Session& session, c
     } else {
         out.push_back(s.aniso ? std::vector<double>{w, 0.0} : std::vector<double>{w});
     }
-    if (s.f0) {  // with the values criterion its fit sets F0 instead
+    if (s.hasShape())
+        for (auto& x : out) x.push_back(s.shapeStart);
+    if (s.f0 && s.logAmplitude()) {  // the literature's height: the values fit scans it; else the peak's ratio
+        double a = 0.0;
+        if (first && !r.hasValues) {
+            std::vector<double> x = out.front();
+            x.push_back(0.0);
+            const scene::Values v = modelValues(common, s, o, x);
+            FitResult one = r;
+            one.angles = {first->incidence};
+            one.thresholds = {first->threshold};
+            const auto m = measureSweep(session, sweepScenes(v, one), one);
+            if (!m.empty() && m[0].peak > 0 && first->peak > 0)
+                a = std::clamp(std::log(first->peak / m[0].peak), s.amplitudeLo(), s.amplitudeHi());
+        }
+        for (auto& x : out) x.push_back(a);
+    } else if (s.f0) {  // with the values criterion its fit sets F0 instead
         double f0 = 0.04;
         if (first && !r.hasValues) {
             std::vector<double> x = out.front();
@@ -397,7 +470,7 @@ void checkFitOptions(const FitOptions& o) {
         if (!model || *model == brdf::Model::None || *model == brdf::Model::Tabulated)
             throw InputError("--models: '" + m +
                              "' is not a model with a width to fit (allowed: phong, phong-classic, "
-                             "retro, blinn, gaussian, beckmann, ggx)");
+                             "retro, blinn, gaussian, beckmann, ggx, abc, sgd, lafortune)");
         // A model twice would be fitted twice and ranked against itself.
         if (std::find(o.models.begin(), o.models.begin() + long(i), m) != o.models.begin() + long(i))
             throw InputError("--models: '" + m + "' is given twice");
@@ -501,19 +574,21 @@ std::vector<double> fitValues(const scene::Values& common, const Space& s, const
     if (s.fitAlbedo) base.albedo = 0.5;  // resolved with a diffuse term whose albedo the search then sets
     scene::Resolved res = scene::resolve(modelValues(common, base, o, starts.front()));
     scene::dropEnergyTerms(res.scene.brdf);
-    const bool exponent = brdf::usesExponent(s.model);
     auto apply = [&](const std::vector<double>& x) {
         brdf::Params p = res.scene.brdf;
-        (exponent ? p.exponent : p.roughness) = std::exp(x[0]);
+        setParam(p, s.width, dvec3(std::exp(x[0])));
         size_t k = 1;
         if (s.aniso) p.roughnessY = std::exp(x[0] + x[k++]);
-        if (s.f0) p.f0 = dvec3(x[k++]);
+        if (s.hasShape()) setParam(p, s.shape, dvec3(s.shapeAt(x[k++])));
+        if (s.f0) setParam(p, s.amplitude, dvec3(s.amplitudeAt(x[k++])));
         if (s.fitAlbedo) p.albedo = dvec3(x[k]);
         return p;
     };
     std::vector<double> lo{s.lo}, hi{s.hi}, step{0.1};
     if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1);
-    if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
+    if (s.hasShape()) lo.push_back(s.shapeLo), hi.push_back(s.shapeHi), step.push_back(0.1);
+    if (s.f0)
+        lo.push_back(s.amplitudeLo()), hi.push_back(s.amplitudeHi()), step.push_back(s.logAmplitude() ? 0.2 : 0.02);
     if (s.fitAlbedo) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
     double best = std::numeric_limits<double>::infinity();
     std::vector<double> bestX;
@@ -523,20 +598,44 @@ std::vector<double> fitValues(const scene::Values& common, const Space& s, const
         if (r < best) best = r, bestX = x;
         return std::isfinite(r) ? r * r : 1e12;  // the mean square: smooth at an exact fit, where the RMS is a cone
     };
-    // The coarse scan: ln(width) from the start in steps of 0.5 either way, F0 at 0.04, 0.3 and 0.9 (a
-    // dielectric's and a metal's), the albedo at 0: the residual in log space has a plateau far from the lobe.
+    // The coarse scan: ln(width) from the start in steps of 0.5 either way; F0 at 0.04, 0.3 and 0.9 (a dielectric's
+    // and a metal's), a literature model's height at the ratio of the target's largest value to the model's at
+    // height 1, and 1/e and e times it; the albedo at 0: the residual in log space has a plateau far from the lobe.
     std::vector<double> start;
     double startValue = std::numeric_limits<double>::infinity();
+    auto largest = [](const std::vector<double>& v) {  // the samples' largest number (NaN: no data there)
+        double m = 0;
+        for (double x : v)
+            if (x > m) m = x;
+        return m;
+    };
+    const double targetPeak = largest(target);
     for (const std::vector<double>& x0 : starts)
-        for (int i = -4; i <= 4; ++i)
-            for (double f0 : s.f0 ? std::vector<double>{0.04, 0.3, 0.9} : std::vector<double>{0.0}) {
-                std::vector<double> x = x0;
-                x[0] = std::clamp(x0[0] + 0.5 * i, s.lo, s.hi);
-                if (s.f0) x[x.size() - 1] = f0;
-                if (s.fitAlbedo) x.push_back(0.0);
-                const double v = objective(x);
-                if (v < startValue) startValue = v, start = x;
+        for (int i = -4; i <= 4; ++i) {
+            std::vector<double> x = x0;
+            x[0] = std::clamp(x0[0] + 0.5 * i, s.lo, s.hi);
+            std::vector<double> amplitudes{0.0};
+            if (s.f0 && s.logAmplitude()) {
+                // The height that gives the model the target's largest value (f cos theta_i), the lobe alone.
+                std::vector<double> unit = x;
+                unit.back() = 0.0;
+                if (s.fitAlbedo) unit.push_back(0.0);
+                const double peak = largest(values::sample(apply(unit), dirs));
+                const double a = peak > 0 && targetPeak > 0
+                                     ? std::clamp(std::log(targetPeak / peak), s.amplitudeLo(), s.amplitudeHi())
+                                     : 0.0;
+                amplitudes = {a - 1.0, a, a + 1.0};
+            } else if (s.f0) {
+                amplitudes = {0.04, 0.3, 0.9};
             }
+            for (double amp : amplitudes) {
+                std::vector<double> y = x;
+                if (s.f0) y.back() = amp;
+                if (s.fitAlbedo) y.push_back(0.0);
+                const double v = objective(y);
+                if (v < startValue) startValue = v, start = y;
+            }
+        }
     bobyqa(objective, start, {lo, hi, step, o.xtolAbs, 1e-8, std::max(o.maxEvaluations, 200)});  // no rendering
     residual = best;
     return bestX;
@@ -550,18 +649,21 @@ double fitColour(const scene::Values& common, Space& s, const FitOptions& o, con
     scene::Resolved res = scene::resolve(modelValues(common, s, o, x), scene::Purpose::Brdf);
     scene::dropEnergyTerms(res.scene.brdf);
     const bool hasF0 = s.f0 || s.f0Held >= 0;
-    const double f0 = s.f0 ? x.back() : std::max(s.f0Held, 0.0);
+    const double f0 = s.f0 ? s.amplitudeAt(x.back()) : std::max(s.f0Held, 0.0);
     s.f0Rgb = dvec3(f0);
     s.albedoRgb = dvec3(std::max(s.albedo, 0.0));
     double sum = 0;
     for (int c = 0; c < 3; ++c) {
-        std::vector<double> y;
-        if (hasF0) y.push_back(f0);
-        if (s.albedo >= 0) y.push_back(s.albedo);
+        std::vector<double> y, lo, hi, step;
+        if (hasF0) {
+            y.push_back(s.amplitudeCoordinate(f0));
+            lo.push_back(s.amplitudeLo()), hi.push_back(s.amplitudeHi()), step.push_back(s.logAmplitude() ? 0.1 : 0.02);
+        }
+        if (s.albedo >= 0) y.push_back(s.albedo), lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02);
         auto apply = [&](const std::vector<double>& yv) {
             brdf::Params p = res.scene.brdf;
             size_t k = 0;
-            if (hasF0) p.f0 = dvec3(yv[k++]);
+            if (hasF0) setParam(p, s.amplitude, dvec3(s.amplitudeAt(yv[k++])));
             if (s.albedo >= 0) p.albedo = dvec3(yv[k]);
             return p;
         };
@@ -574,13 +676,9 @@ double fitColour(const scene::Values& common, Space& s, const FitOptions& o, con
             return std::isfinite(r) ? r * r : 1e12;
         };
         objective(y);
-        const size_t n = y.size();
-        if (n)
-            bobyqa(objective, y,
-                   {std::vector<double>(n, 0.0), std::vector<double>(n, 1.0), std::vector<double>(n, 0.02), o.xtolAbs,
-                    1e-8, 200});
+        if (!y.empty()) bobyqa(objective, y, {lo, hi, step, o.xtolAbs, 1e-8, 200});
         size_t k = 0;
-        if (hasF0) s.f0Rgb[c] = bestY[k++];
+        if (hasF0) s.f0Rgb[c] = s.amplitudeAt(bestY[k++]);
         if (s.albedo >= 0) s.albedoRgb[c] = bestY[k];
         sum += best * best;
     }
@@ -701,7 +799,7 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                 if (o.diffuse == "auto" && s.albedo < kMinFittedAlbedo) s.albedo = -1;  // no diffuse part
             }
             if (s.f0) {  // F0 sets the magnitude, which the semi-axes do not see: the values fit's is held
-                s.f0Held = x.back();
+                s.f0Held = s.amplitudeAt(x.back());
                 x.pop_back();
                 s.f0 = false;
             }
@@ -728,7 +826,10 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
         const double scale = r.hasValues ? 0.4 : 1.0;
         std::vector<double> lo{s.lo}, hi{s.hi}, step{0.05 * scale};
         if (s.aniso) lo.push_back(std::log(0.1)), hi.push_back(std::log(10.0)), step.push_back(0.1 * scale);
-        if (s.f0) lo.push_back(0.0), hi.push_back(1.0), step.push_back(0.02 * scale);
+        if (s.hasShape()) lo.push_back(s.shapeLo), hi.push_back(s.shapeHi), step.push_back(0.1 * scale);
+        if (s.f0)
+            lo.push_back(s.amplitudeLo()), hi.push_back(s.amplitudeHi()),
+                step.push_back((s.logAmplitude() ? 0.2 : 0.02) * scale);
         double best = std::numeric_limits<double>::infinity();
         std::vector<double> bestX = starts.front();
         std::vector<FitSample> bestSamples;
@@ -771,7 +872,10 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
         size_t j = 1;
         auto rgbJson = [](const dvec3& c) { return nlohmann::ordered_json::array({c.x, c.y, c.z}); };
         if (s.aniso) fit.params["roughness_y"] = std::exp(bestX[0] + bestX[j++]);
-        if (f0Fitted) fit.params["f0"] = s.rgb ? rgbJson(s.f0Rgb) : nlohmann::ordered_json(s.f0 ? bestX[j] : s.f0Held);
+        if (s.hasShape()) fit.params[s.shape] = s.shapeAt(bestX[j++]);
+        if (f0Fitted)
+            fit.params[s.amplitude] =
+                s.rgb ? rgbJson(s.f0Rgb) : nlohmann::ordered_json(s.f0 ? s.amplitudeAt(bestX[j]) : s.f0Held);
         if (s.albedo >= 0) fit.params["albedo"] = s.rgb ? rgbJson(s.albedoRgb) : nlohmann::ordered_json(s.albedo);
         if (brdf::isMicrofacet(s.model)) fit.params["geometry"] = s.geometry;
         fit.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

@@ -223,6 +223,32 @@ std::vector<TermUniform> termUniforms(const brdf::Params& p) {
     }
     if (p.model == Model::Gaussian)
         u.push_back({"uGaussianNorm", 1, {float(brdf::gaussianNormalization(p.roughness))}});
+    if (p.model == Model::ABC) {
+        u.push_back({"uAbcA", 3, rgb(p.abcA)});
+        u.push_back({"uAbcB", 1, {float(p.abcB)}});
+        u.push_back({"uAbcC", 1, {float(p.abcC)}});
+    }
+    if (p.model == Model::SGD) {
+        const brdf::SgdParams& g = p.sgd;
+        dvec3 norm;
+        for (int c = 0; c < 3; ++c) norm[c] = brdf::sgdNormalization(g.alpha[c], g.p[c]);
+        for (const auto& [name, v] : std::vector<std::pair<const char*, dvec3>>{{"uSgdRhoS", g.rhoS},
+                                                                                {"uSgdAlpha", g.alpha},
+                                                                                {"uSgdP", g.p},
+                                                                                {"uSgdNorm", norm},
+                                                                                {"uSgdF0", g.f0},
+                                                                                {"uSgdF1", g.f1},
+                                                                                {"uSgdLambda", g.lambda},
+                                                                                {"uSgdC", g.c},
+                                                                                {"uSgdK", g.k},
+                                                                                {"uSgdTheta0", g.theta0}})
+            u.push_back({name, 3, rgb(v)});
+    }
+    if (p.model == Model::Lafortune) {
+        u.push_back({"uLafortuneRhoS", 3, rgb(p.lafortuneRhoS)});
+        u.push_back({"uLafortuneCxy", 1, {float(p.lafortuneCxy)}});
+        u.push_back({"uLafortuneCz", 1, {float(p.lafortuneCz)}});
+    }
     u.push_back({"uEta", 3, rgb(p.eta)});
     u.push_back({"uK", 3, rgb(p.k)});
     if (p.spectrum) {

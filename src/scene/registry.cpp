@@ -36,8 +36,12 @@ const std::string& measuredPath(const Resolved& r) {
 bool usesExponent(const Resolved& r) { return builtin(r) && brdf::usesExponent(r.scene.brdf.model); }
 bool usesRoughness(const Resolved& r) {
     const Model m = r.scene.brdf.model;
-    return builtin(r) && m != Model::None && m != Model::Tabulated && !brdf::usesExponent(m);
+    return builtin(r) && m != Model::None && m != Model::Tabulated && !brdf::usesExponent(m) && !brdf::isLiterature(m);
 }
+bool fitTable(const Resolved& r) { return r.values.given("fit_table"); }
+bool abc(const Resolved& r) { return builtin(r) && r.scene.brdf.model == Model::ABC; }
+bool sgd(const Resolved& r) { return builtin(r) && r.scene.brdf.model == Model::SGD; }
+bool lafortune(const Resolved& r) { return builtin(r) && r.scene.brdf.model == Model::Lafortune; }
 bool anisotropic(const Resolved& r) {
     return builtin(r) && r.scene.brdf.anisotropic() && brdf::allowsAnisotropy(r.scene.brdf.model);
 }
@@ -45,8 +49,8 @@ bool tangentFrame(const Resolved& r) { return anisotropic(r) || r.scene.brdfFile
 bool microfacet(const Resolved& r) { return builtin(r) && brdf::isMicrofacet(r.scene.brdf.model); }
 bool schlick(const Resolved& r) { return microfacet(r) && r.scene.brdf.fresnel == brdf::Fresnel::Schlick; }
 bool exactIndex(const Resolved& r) {
-    return microfacet(r) &&
-           (r.scene.brdf.fresnel == brdf::Fresnel::Dielectric || r.scene.brdf.fresnel == brdf::Fresnel::Conductor);
+    return abc(r) || (microfacet(r) && (r.scene.brdf.fresnel == brdf::Fresnel::Dielectric ||
+                                        r.scene.brdf.fresnel == brdf::Fresnel::Conductor));
 }
 bool spectral(const Resolved& r) { return microfacet(r) && r.scene.brdf.fresnel == brdf::Fresnel::Spectral; }
 bool conductor(const Resolved& r) { return microfacet(r) && r.scene.brdf.fresnel == brdf::Fresnel::Conductor; }
@@ -194,7 +198,24 @@ std::string tableText(const brdf::NdfTable* t) {
 
 const char* kModelHelp =
     "specular model: phong | phong-classic (reflection lobes) | retro (retroreflective lobe about the light) | "
-    "blinn | gaussian | beckmann | ggx | tabulated (microfacet; tabulated: --ndf-table) | none (diffuse only)";
+    "blinn | gaussian | beckmann | ggx | tabulated (microfacet; tabulated: --ndf-table) | abc (Low et al. 2012) | "
+    "sgd (Bagher et al. 2012) | lafortune (Ngan et al. 2005's lobe): the literature's models, each with its own F "
+    "and G (--abc-*, --sgd-*, --lafortune-*; the published fits as presets: --fit-table, --fit-material) | none "
+    "(diffuse only)";
+
+/// A parameter of one of the literature's models (abc, sgd, lafortune): a number or an RGB value of the model's
+/// field, a column of its own.
+template <class Get>
+Param literatureParam(const char* name, Kind kind, double lo, double hi, bool openLo, const char* unit,
+                      const std::string& help, const char* appliesTo, bool (*applies)(const Resolved&), Get get) {
+    Param e{name, Table::Material, kind, "", lo, hi, openLo, false, {}, unit, help, appliesTo, applies, name, nullptr};
+    e.value = [get](const Resolved& r) -> json {
+        if constexpr (std::is_same_v<FieldOf<Get>, dvec3>) return rgb(get(const_cast<Resolved&>(r)));
+        else return get(const_cast<Resolved&>(r));
+    };
+    bind(e, get);
+    return e;
+}
 
 std::vector<Param> build() {
     using K = Kind;
@@ -235,8 +256,8 @@ std::vector<Param> build() {
          false,
          {},
          "",
-         "phong/phong-classic/blinn/retro exponent n",
-         "phong, phong-classic, blinn, retro",
+         "phong/phong-classic/blinn/retro/lafortune exponent n",
+         "phong, phong-classic, blinn, retro, lafortune",
          usesExponent,
          "exponent",
          [](const Resolved& r) -> json { return r.scene.brdf.exponent; }});
@@ -332,8 +353,8 @@ std::vector<Param> build() {
          false,
          {},
          "",
-         "dielectric/conductor index eta = n_t/n_i (default: the material's, else 1.5)",
-         "fresnel dielectric, conductor",
+         "dielectric/conductor index eta = n_t/n_i (default: the material's, else 1.5); abc's F",
+         "fresnel dielectric, conductor; abc",
          exactIndex,
          "eta",
          [](const Resolved& r) -> json { return rgb(r.scene.brdf.eta); }});
@@ -465,6 +486,98 @@ std::vector<Param> build() {
          [](const Resolved& r) -> json { return r.scene.brdf.sigmaDeg; }});
     bind(
         p.back(), [](auto& r) -> auto& { return r.scene.brdf.sigmaDeg; });
+    // ---- The literature's models: the published formulas' symbols (docs/literature.md) ----
+    const char* perChannel = " (V or R,G,B: the published fits are per channel)";
+    add(literatureParam(
+        "abc_a", K::Rgb, 0, 1e8, false, "", std::string("abc A, the lobe's height") + perChannel, "abc", abc,
+        [](auto& r) -> auto& { return r.scene.brdf.abcA; }));
+    add(literatureParam(
+        "abc_b", K::Number, 0, 1e9, false, "",
+        "abc B: (1 + B (1 - cos theta_h))^-C; larger is narrower (width ~ 1 / sqrt(B C))", "abc", abc,
+        [](auto& r) -> auto& { return r.scene.brdf.abcB; }));
+    add(literatureParam(
+        "abc_c", K::Number, 0, 100, false, "", "abc C, the tail's fall-off (its F uses --eta)", "abc", abc,
+        [](auto& r) -> auto& { return r.scene.brdf.abcC; }));
+    add(literatureParam(
+        "sgd_rho_s", K::Rgb, 0, 1e8, false, "",
+        std::string("sgd rho_s, the height of the normalized D (a published fit's rho_s kap / K)") + perChannel, "sgd",
+        sgd, [](auto& r) -> auto& { return r.scene.brdf.sgd.rhoS; }));
+    add(literatureParam(
+        "sgd_alpha", K::Rgb, 0, 10, true, "",
+        std::string("sgd alpha in a = alpha + tan^2 theta_h / alpha; smaller is narrower") + perChannel, "sgd", sgd,
+        [](auto& r) -> auto& { return r.scene.brdf.sgd.alpha; }));
+    add(literatureParam(
+        "sgd_p", K::Rgb, 0, 10, false, "", std::string("sgd p, the power of a^-p") + perChannel, "sgd", sgd,
+        [](auto& r) -> auto& { return r.scene.brdf.sgd.p; }));
+    add(literatureParam(
+        "sgd_f0", K::Rgb, -100, 100, false, "",
+        std::string("sgd Fresnel f0 in f0 - f1 cos theta_d + (1 - cos theta_d)^5 (1 - f0)") + perChannel, "sgd", sgd,
+        [](auto& r) -> auto& { return r.scene.brdf.sgd.f0; }));
+    add(literatureParam(
+        "sgd_f1", K::Rgb, -100, 100, false, "", std::string("sgd Fresnel f1") + perChannel, "sgd", sgd,
+        [](auto& r) -> auto& { return r.scene.brdf.sgd.f1; }));
+    add(literatureParam(
+        "sgd_lambda", K::Rgb, 0, 1e9, false, "",
+        std::string("sgd masking lambda in G1 = clamp(1 + lambda (1 - exp(c max(0, theta - theta0)^k)), "
+                    "0, 1); 0: no masking") +
+            perChannel,
+        "sgd", sgd, [](auto& r) -> auto& { return r.scene.brdf.sgd.lambda; }));
+    add(literatureParam(
+        "sgd_c", K::Rgb, 0, 1e38, false, "", std::string("sgd masking c") + perChannel, "sgd", sgd,
+        [](auto& r) -> auto& { return r.scene.brdf.sgd.c; }));
+    add(literatureParam(
+        "sgd_k", K::Rgb, 0, 1e4, false, "", std::string("sgd masking k") + perChannel, "sgd", sgd,
+        [](auto& r) -> auto& { return r.scene.brdf.sgd.k; }));
+    add(literatureParam(
+        "sgd_theta0", K::Rgb, -kPi / 2, kPi / 2, false, "rad",
+        std::string("sgd masking theta0, in radians as published") + perChannel, "sgd", sgd,
+        [](auto& r) -> auto& { return r.scene.brdf.sgd.theta0; }));
+    add(literatureParam(
+        "lafortune_rho_s", K::Rgb, 0, 1e8, false, "",
+        std::string("lafortune rho_s: the lobe's albedo at normal incidence when |C_z| >= |C_xy|") + perChannel,
+        "lafortune", lafortune, [](auto& r) -> auto& { return r.scene.brdf.lafortuneRhoS; }));
+    add(literatureParam(
+        "lafortune_cxy", K::Number, -100, 100, false, "",
+        "lafortune C_xy (C_xy = -C_z: the lobe about the mirror direction; C_xy > 0: back toward the "
+        "light; the exponent is --exponent)",
+        "lafortune", lafortune, [](auto& r) -> auto& { return r.scene.brdf.lafortuneCxy; }));
+    add(literatureParam(
+        "lafortune_cz", K::Number, -100, 100, false, "",
+        "lafortune C_z (only C_z / C_xy matters: the lobe is divided by max(|C_xy|, |C_z|)^n)", "lafortune", lafortune,
+        [](auto& r) -> auto& { return r.scene.brdf.lafortuneCz; }));
+    add({"fit_table",
+         T::Material,
+         K::Path,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
+         "a table of the literature's fits to the MERL materials (tab-separated: Low et al. 2012's abc, Bagher et al. "
+         "2012's sgd or Ngan et al. 2005's lafortune, told by its header; docs/literature.md): with --fit-material "
+         "NAME, that material's fit is the BRDF (model, parameters, lambert diffuse; not with any other material "
+         "flag)",
+         "every scene",
+         fitTable,
+         "fit_table",
+         [](const Resolved& r) -> json { return r.values.text("fit_table"); }});
+    add({"fit_material",
+         T::Material,
+         K::Text,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
+         "the material of --fit-table (chrome-steel, gray-plastic, ...)",
+         "--fit-table",
+         fitTable,
+         "fit_material",
+         [](const Resolved& r) -> json { return r.values.text("fit_material"); }});
     add({"ndf_table",
          T::Material,
          K::Path,
@@ -1202,6 +1315,7 @@ std::string Param::allowed() const {
         case Kind::Angles: return "A, A,B,C or START:STOP:STEP, each in " + interval();
         case Kind::Size: return "PX or WxH, each in " + interval();
         case Kind::List: return "NAME=VALUE, repeated";
+        case Kind::Text: return "a name";
     }
     return "";
 }
@@ -1339,6 +1453,10 @@ std::string check(const Param& p, const std::string& text) {
             if (text.empty()) err = "expected a file name";
             // A C string ends at a NUL: "x.binary\0zz" would open x.binary (the library and Python can pass one).
             else if (text.find('\0') != std::string::npos) err = "a file name cannot contain a NUL character";
+            break;
+        case Kind::Text:
+            if (text.empty() || text.size() > 80 || text != printable(text))
+                err = "expected a name: one line of printable characters, at most 80 (got '" + printable(text) + "')";
             break;
         case Kind::Angles:  // the list and range syntax is checked by resolve (scene/resolve.cpp: parseAngles)
         case Kind::Size:

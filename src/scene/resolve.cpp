@@ -12,6 +12,7 @@
 #include "hilite/core/error.hpp"
 #include "render/bumps.hpp"
 #include "render/shader_source.hpp"
+#include "scene/fit_table.hpp"
 
 #include <unistd.h>
 
@@ -30,11 +31,11 @@ namespace {
 // The parameters resolve() reads, combines or names in a message by hand (every entry with a field writes it
 // itself: Param::write), each name checked by the compiler (scene::Name).
 constexpr Name kBrdf{"brdf"}, kBumpFilter{"bump_filter"}, kBumps{"bumps"}, kDiffuse{"diffuse"}, kElevation{"elevation"},
-    kEta{"eta"}, kF0{"f0"}, kFov{"fov"}, kFresnel{"fresnel"}, kGpu{"gpu"}, kIncidence{"incidence"}, kK{"k"},
-    kLight{"light"}, kLightRadius{"light_radius"}, kMaterial{"material"}, kMeasured{"measured"}, kModel{"model"},
-    kMultiscatter{"multiscatter"}, kNdfTable{"ndf_table"}, kParam{"param"}, kRenderer{"renderer"}, kLobe{"lobe"},
-    kRoughness{"roughness"}, kRoughnessY{"roughness_y"}, kSize{"size"}, kSupersample{"supersample"},
-    kTolerance{"tolerance"};
+    kEta{"eta"}, kF0{"f0"}, kFitTable{"fit_table"}, kFitMaterial{"fit_material"}, kFov{"fov"}, kFresnel{"fresnel"},
+    kGpu{"gpu"}, kIncidence{"incidence"}, kK{"k"}, kLight{"light"}, kLightRadius{"light_radius"}, kMaterial{"material"},
+    kMeasured{"measured"}, kModel{"model"}, kMultiscatter{"multiscatter"}, kNdfTable{"ndf_table"}, kParam{"param"},
+    kRenderer{"renderer"}, kLobe{"lobe"}, kRoughness{"roughness"}, kRoughnessY{"roughness_y"}, kSize{"size"},
+    kSupersample{"supersample"}, kTolerance{"tolerance"};
 
 /// Prints "hilite: warning: MSG" on stderr, once per process for each message (a sweep repeats them).
 void warnOnce(const std::string& msg) {
@@ -219,7 +220,8 @@ void checkMeasuredAlone(const Reader& in) {
 
 /// The BRDF's combined parameters, over the fields the registry's entries have written into `p`.
 void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Params& p) {
-    const bool usesRoughness = p.model != brdf::Model::None && !brdf::usesExponent(p.model);
+    const bool usesRoughness =
+        p.model != brdf::Model::None && !brdf::usesExponent(p.model) && !brdf::isLiterature(p.model);
     if (purpose == Purpose::Brdf && usesRoughness && brdf::isMicrofacet(p.model)) {
         // The quadrature of `brdf albedo` resolves lobes down to kMinIntegrableRoughness; a mirror would
         // integrate to a silent 0.
@@ -240,6 +242,9 @@ void resolveBrdf(const Reader& in, Purpose purpose, int spectralStepNm, brdf::Pa
                              fmt(brdf::kMinIntegrableRoughness) + ", " + fmt(brdf::kMaxRoughness) + "] (got " +
                              fmt(*p.roughnessY) + ")");
     }
+    if (p.model == brdf::Model::Lafortune && p.lafortuneCxy == 0.0 && p.lafortuneCz == 0.0)
+        throw InputError(in.where(kModel) +
+                         " lafortune: --lafortune-cxy and --lafortune-cz are both 0 (no lobe: give either != 0)");
     const bool table = in.given(kNdfTable);
     if (p.model == brdf::Model::Tabulated && !table)
         throw InputError(in.where(kModel) + " tabulated: needs --ndf-table FILE (rows 'theta_h_deg, D')");
@@ -394,7 +399,34 @@ void checkMeasurement(const Reader& in, const Resolved& r) {
 
 }  // namespace
 
-Resolved resolve(const Values& values, Purpose purpose) {
+/// --fit-table FILE --fit-material NAME: the table's material as the values it sets (scene/fit_table.hpp), each
+/// checked as a value given by hand and named by its line of the table in messages.
+namespace {
+Values withPreset(const Values& v) {
+    const Reader in(v);
+    const bool table = in.given(kFitTable), material = in.given(kFitMaterial);
+    if (!table && !material) return v;
+    if (!table) throw InputError(in.where(kFitMaterial) + ": only with --fit-table FILE (a table of published fits)");
+    if (!material)
+        throw InputError(in.where(kFitTable) + ": needs --fit-material NAME (the table's materials: " +
+                         join(presetMaterials(in.text(kFitTable), in.where(kFitTable))) + ")");
+    for (const Param& other : registry())
+        if (other.table == Table::Material && other.name != kFitTable.text && other.name != kFitMaterial.text &&
+            in.given(other))
+            throw InputError(in.where(other) + ": not with " + in.where(kFitTable) +
+                             " (the preset is the whole BRDF: its model, parameters and diffuse)");
+    Values out = v;
+    for (const PresetValue& p : presetValues(in.text(kFitTable), in.text(kFitMaterial), in.where(kFitTable))) {
+        const std::string err = check(*find(p.name), p.text);
+        if (!err.empty()) throw InputError(p.origin + ": " + p.name + ": " + err);
+        out.set(p.name, p.text, p.origin);
+    }
+    return out;
+}
+}  // namespace
+
+Resolved resolve(const Values& given, Purpose purpose) {
+    const Values values = withPreset(given);
     const Reader in(values);
     Resolved r;
     r.values = values;

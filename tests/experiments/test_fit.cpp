@@ -147,6 +147,51 @@ TEST_CASE("fit: the defaults recover the generator of a table with Fresnel, mask
     }
 }
 
+TEST_CASE("fit: the literature's models (abc, sgd, lafortune) are fitted back from the tables they make") {
+    // Each tabulated (MERL binning) with a Lambertian body and fitted alone with the defaults: its width, its second
+    // shape parameter (abc C, sgd p), its height and the albedo come back (SGD's F and G1, ABC's eta held at the
+    // defaults, the target's here). ABC's B and C trade against each other (the lobe's width is about
+    // 1 / sqrt(B C)): each within 5%, their product within 1%.
+    hilite_test::TempDir dir("hilite-fit-literature");
+    struct Case {
+        std::string args, model;
+        std::map<std::string, double> want;  ///< parameter: value (each within `tolerance` of it)
+        double tolerance;
+    };
+    const Case cases[] = {
+        {"--model abc --abc-a 40 --abc-b 2000 --abc-c 1.4 --diffuse lambert --albedo 0.1",
+         "abc",
+         {{"abc_b", 2000}, {"abc_c", 1.4}, {"abc_a", 40}, {"albedo", 0.1}},
+         0.05},
+        {"--model sgd --sgd-alpha 0.03 --sgd-p 0.7 --sgd-rho-s 0.4 --diffuse lambert --albedo 0.1",
+         "sgd",
+         {{"sgd_alpha", 0.03}, {"sgd_p", 0.7}, {"sgd_rho_s", 0.4}, {"albedo", 0.1}},
+         0.02},
+        {"--model lafortune --exponent 300 --lafortune-rho-s 0.5 --diffuse lambert --albedo 0.1",
+         "lafortune",
+         {{"exponent", 300}, {"lafortune_rho_s", 0.5}, {"albedo", 0.1}},
+         0.02},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.args);
+        const std::string file = dir / (c.model + ".binary");
+        tabulate(c.args, file);
+        const auto fits = jsonLines(fit("--incidence 0:80:20 --size 128", file, options(c.model, {0.25, 0.5, 0.75})));
+        REQUIRE(fits.size() == 1);
+        MESSAGE(c.model << ": " << fits[0]["params"].dump() << " shape " << fits[0]["shape_residual"] << " values "
+                        << fits[0]["values_residual"]);
+        for (const auto& [name, value] : c.want) {
+            CAPTURE(name);
+            REQUIRE(fits[0]["params"].contains(name));
+            CHECK_NEAR(fits[0]["params"][name].get<double>() / value, 1, c.tolerance);
+        }
+        if (c.model == "abc")
+            CHECK_NEAR(fits[0]["params"]["abc_b"].get<double>() * fits[0]["params"]["abc_c"].get<double>() / 2800, 1,
+                       0.01);
+        CHECK(fits[0]["shape_residual"].get<double>() < 0.02);
+    }
+}
+
 TEST_CASE("fit: --fit-color fits F0 and the albedo per channel: gold's F(0) and a red plastic's albedo") {
     hilite_test::TempDir dir("hilite-fit-color");
     const brdf::Params gold = scene::resolve(flags("--model ggx --material gold"), scene::Purpose::Brdf).scene.brdf;

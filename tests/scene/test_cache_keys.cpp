@@ -40,6 +40,14 @@ TEST_CASE("scene::sceneKey and energyKey: every registry parameter changes them,
         std::ofstream f(other);
         f << "theta_h_deg, D\n0, 4\n20, 1\n40, 0\n";
     }
+    const std::string fitsA = "/tmp/hilite_test_cache_keys_fits_a.tsv",
+                      fitsB = "/tmp/hilite_test_cache_keys_fits_b.tsv";
+    for (const auto& [file, b] : {std::pair<std::string, const char*>{fitsA, "1000"}, {fitsB, "2000"}}) {
+        std::ofstream f(file);
+        f << "material\tkD_r\tkD_g\tkD_b\tA_r\tA_g\tA_b\tB\tC\tior\nm\t0.1\t0.1\t0.1\t100\t100\t100\t" << b
+          << "\t1.2\t1.5\nn\t0.2\t0.1\t0.1\t100\t100\t100\t3000\t1.2\t1.5\n";
+    }
+    const std::vector<std::pair<std::string, std::string>> fits = {{"fit_table", fitsA}, {"fit_material", "m"}};
     const std::string painted = kSource + "/data/ndf/hand_painted.csv",
                       brdfFile = kSource + "/fuzz/corpus/brdf/ggx.brdf";
     const std::vector<Case> cases = {
@@ -59,6 +67,23 @@ TEST_CASE("scene::sceneKey and energyKey: every registry parameter changes them,
         {"diffuse", "coupled", {{"geometry", "smith"}}},
         {"albedo", "0.3", {}},
         {"sigma", "30", {}},
+        {"abc_a", "50", {}},
+        {"abc_b", "500", {}},
+        {"abc_c", "2", {}},
+        {"sgd_rho_s", "0.2", {}},
+        {"sgd_alpha", "0.1", {}},
+        {"sgd_p", "0.9", {}},
+        {"sgd_f0", "0.1", {}},
+        {"sgd_f1", "0.1", {}},
+        {"sgd_lambda", "0.5", {}},
+        {"sgd_c", "0.1", {}},
+        {"sgd_k", "3", {}},
+        {"sgd_theta0", "0.1", {}},
+        {"lafortune_rho_s", "0.2", {}},
+        {"lafortune_cxy", "-0.5", {}},
+        {"lafortune_cz", "0.5", {}},
+        {"fit_table", fitsB, fits},
+        {"fit_material", "n", fits},
         {"ndf_table", other, {{"model", "tabulated"}, {"ndf_table", painted}}},
         {"brdf", brdfFile, {}},
         {"param", "alpha=0.2", {{"brdf", brdfFile}}},
@@ -125,6 +150,8 @@ TEST_CASE("scene::sceneKey and energyKey: every registry parameter changes them,
     }
     for (const scene::Param& p : scene::registry()) CHECK_MESSAGE(covered.count(p.name), p.name);
     std::remove(other.c_str());
+    std::remove(fitsA.c_str());
+    std::remove(fitsB.c_str());
 
     // A measured table: keyed by the object (the survey's cache holds the scene, so the table, while it keys).
     render::Scene flat, measured;

@@ -34,6 +34,10 @@ enum class Model {
     None,          ///< no specular lobe: the diffuse term alone
     Retro,         ///< retroreflective lobe (n+2)/(2 pi) cos^n(beta), beta = angle(wo, wi): back toward the light
     Tabulated,     ///< microfacet, a hand-painted NDF: D(theta_h) from a table (Params::ndfTable, brdf/ndf_table.hpp)
+    // The literature's fitted models, each whole as published, with its own Fresnel and masking (isLiterature):
+    ABC,        ///< Low et al. 2012: F(eta) A G_CT / ((1 + B (1 - cos theta_h))^C pi cos_i cos_o)
+    SGD,        ///< Bagher et al. 2012, shifted gamma distribution: rho_s F_sgd D_sgd G1 G1 / (pi cos_i cos_o)
+    Lafortune,  ///< one Lafortune lobe as Ngan et al. 2005 fit it: rho_s (n+2)/(2 pi) max(0, C.(wi * wo))^n / max|C|^n
 };
 enum class Fresnel {
     None,        ///< F = 1
@@ -81,6 +85,22 @@ bool isMicrofacet(Model m);
 bool usesExponent(
     Model m);  ///< phong, phong-classic, blinn, retro take an exponent; beckmann, ggx, gaussian a roughness
 bool allowsAnisotropy(Model m);  ///< beckmann, ggx
+/// abc, sgd, lafortune: a published model whole (its lobe, Fresnel and masking in one term, docs/literature.md);
+/// --fresnel, --geometry and --multiscatter do not apply, a diffuse term does.
+bool isLiterature(Model m);
+
+/// Bagher et al. 2012's shifted gamma distribution, per channel (the published fits differ by channel).
+/// D = K exp(-a) / (pi a^p cos^4 theta_h), a = alpha + tan^2 theta_h / alpha, K = 1 / (alpha Gamma(1 - p, alpha))
+/// so that int D cos theta_h dw = 1 (the paper's k_ap; the published fits' kap enters rho_s, brdf/literature.hpp);
+/// F = f0 - f1 cos theta_d + (1 - cos theta_d)^5 (1 - f0); G1 = clamp(1 + lambda (1 - exp(c max(0, theta -
+/// theta0)^k)), 0, 1). Defaults: near MERL gray-plastic's green channel as Bagher et al. fit it, with lambda 2 for
+/// its 1.77: G1 then reaches 0 before the horizon (at 1.77 it ends at 0.08 and f grows as 1 / cos(theta_o) there).
+struct SgdParams {
+    dvec3 rhoS{0.5};  ///< height of the normalized D (a published fit's rho_s kap / K)
+    dvec3 alpha{0.0085}, p{0.55};
+    dvec3 f0{0.044}, f1{0.022};
+    dvec3 lambda{2.0}, c{5.3e-08}, k{63.2}, theta0{0.284};  ///< theta0 in radians
+};
 
 struct Params {
     Model model = Model::GGX;
@@ -111,6 +131,14 @@ struct Params {
     dvec3 albedo{0.5, 0.5, 0.5};  ///< lambert / oren-nayar rho
     double sigmaDeg = 20.0;       ///< oren-nayar facet slope standard deviation, degrees
     Multiscatter multiscatter = Multiscatter::None;
+    /// abc: A per channel, B, C (defaults: near MERL gray-plastic as Low et al. fit it; its F uses eta)
+    dvec3 abcA{200.0};
+    double abcB = 34000.0, abcC = 1.02;
+    SgdParams sgd;  ///< sgd
+    /// lafortune: rho_s per channel, C_xy, C_z (the exponent is `exponent`); C_xy = -C_z is a lobe about the mirror
+    /// direction (rho_s times the normalized Phong lobe)
+    dvec3 lafortuneRhoS{0.3};
+    double lafortuneCxy = -1.0, lafortuneCz = 1.0;
     /// kulla-conty, coupled: the directional albedo tables of this BRDF (brdf::energyTables(p), made by
     /// scene::resolve); they belong to the parameters they were made for, so set them again after a change.
     std::shared_ptr<const EnergyTables> energy;

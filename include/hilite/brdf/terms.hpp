@@ -17,6 +17,7 @@ namespace hilite::brdf {
 using glm::dot;
 using std::clamp;
 using std::exp;
+using std::log;
 using std::max;
 using std::min;
 using std::sqrt;
@@ -46,5 +47,16 @@ inline double angleFromSinCos(double s, double c) { return std::atan2(s, c); }
 /// on the hemisphere, so integrated numerically (relative error < 1e-12) and cached per m. m = 0 (a delta, k_G
 /// infinite) returns 0, so that no product with it becomes inf or NaN. See docs/terms.md, gaussianNormalization.
 double gaussianNormalization(double m);
+
+/// K of D_SGD = 1 / (alpha Gamma(1 - p, alpha)), so that int D cos theta_h dw = 1 (with t = tan^2 theta_h the
+/// integral is int_0^inf exp(-alpha - t / alpha) (alpha + t / alpha)^-p dt): Gamma(1 - p, alpha) integrated in
+/// ln s (relative error < 1e-13 for alpha in [1e-7, 10], p in [0, 10]; p = 0 and 1/2 have closed forms, tested).
+/// Cached per thread for the last (alpha, p).
+double sgdNormalization(double alpha, double p);
+
+/// int (1 + B (1 - cos theta_h))^-C cos theta_h dw_h over the hemisphere, the ABC lobe's shape (A = 1) in
+/// closed form: 2 pi / B^2 [(1 + B) I(-C) - I(1 - C)], I(q) = int_1^{1+B} t^q dt; a series for B < 1/2, where
+/// the closed form cancels. 1 / it is the A that normalizes the shape as an NDF.
+double abcShapeIntegral(double B, double C);
 
 }  // namespace hilite::brdf

@@ -43,6 +43,7 @@ enum class Kind {
     Angles,   ///< one angle in [lo, hi], a list A,B,C or a range START:STOP:STEP (inclusive)
     Size,     ///< PX or WxH, each a whole number in [lo, hi]
     List,     ///< repeated NAME=VALUE assignments, in order (the .brdf --param)
+    Text,     ///< a name (a material of a table): one line of printable characters
 };
 
 /// Every parameter's name, in the registry's order (test_registry_defaults checks the entries against it), so
@@ -64,6 +65,23 @@ inline constexpr const char* kNames[] = {"model",
                                          "diffuse",
                                          "albedo",
                                          "sigma",
+                                         "abc_a",
+                                         "abc_b",
+                                         "abc_c",
+                                         "sgd_rho_s",
+                                         "sgd_alpha",
+                                         "sgd_p",
+                                         "sgd_f0",
+                                         "sgd_f1",
+                                         "sgd_lambda",
+                                         "sgd_c",
+                                         "sgd_k",
+                                         "sgd_theta0",
+                                         "lafortune_rho_s",
+                                         "lafortune_cxy",
+                                         "lafortune_cz",
+                                         "fit_table",
+                                         "fit_material",
                                          "ndf_table",
                                          "measured",
                                          "brdf",
@@ -137,7 +155,7 @@ struct Param {
     /// The row column and its value as resolved and rendered; column "": not a row field (a setting of the
     /// run, such as the GL backend).
     std::string column;
-    nlohmann::json (*value)(const Resolved&) = nullptr;
+    std::function<nlohmann::json(const Resolved&)> value = nullptr;
     /// Number: a word read as "chosen automatically" besides the interval ("auto"), so no number in range
     /// stands for automatic (--fov 0 meant automatic); "" for none.
     std::string automatic = "";
