@@ -296,9 +296,9 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
     };
     if (auto it = cache.find(path);
         known && it != cache.end() && it->second.size == size && it->second.mtimeNs == mtime)
-        if (auto held = it->second.table.lock()) {
-            keep(held);
-            return held;
+        if (auto shared = it->second.table.lock()) {
+            keep(shared);
+            return shared;
         }
     // Counted while alive (tablesHeld): a test of a sweep's memory sees how many tables it held at once.
     const std::shared_ptr<const MeasuredBrdf> table(new MeasuredBrdf(read(path, what)), [](const MeasuredBrdf* t) {

@@ -180,7 +180,9 @@ TEST_CASE("fit: the literature's models (abc, sgd, lafortune) are fitted back fr
         REQUIRE(fits.size() == 1);
         MESSAGE(c.model << ": " << fits[0]["params"].dump() << " shape " << fits[0]["shape_residual"] << " values "
                         << fits[0]["values_residual"]);
-        for (const auto& [name, value] : c.want) {
+        for (const auto& want : c.want) {
+            const std::string& name = want.first;
+            const double value = want.second;
             CAPTURE(name);
             REQUIRE(fits[0]["params"].contains(name));
             CHECK_NEAR(fits[0]["params"][name].get<double>() / value, 1, c.tolerance);
