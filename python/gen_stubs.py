@@ -86,7 +86,7 @@ TOLERANCE_SETTINGS = {"size": "str", "boundary": "Literal['subpixel', 'pixel']",
                       "framing": "Literal['fixed', 'auto']", "renderer": "Literal['cpu', 'gl']"}
 TOLERANCE_CHECK = {"size": "str", "aspect": "float"}
 # experiments/fit.cpp toJson: one object per model
-FIT = {"model": "str", "params": "dict[str, float | str | list[float]]", "residual": "float | None",
+FIT = {"model": "str", "params": "dict[str, float | str | list[float]]", "at_bound": "list[str]", "residual": "float | None",
        "shape_residual": "float | None", "values_residual": "float | None", "rank": "int", "rank_by": "str",
        "tie": "bool", "verdict": "str", "resolution": "float", "tolerance": "float", "target": "str",
        "evaluations": "int", "value_evaluations": "int", "time_ms": "float", "stop": "str", "thresholds": "list[float]",

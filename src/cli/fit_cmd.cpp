@@ -66,6 +66,13 @@ std::string residualText(double v) {
     return buf;
 }
 
+/// "; at its search bound: roughness, f0" (empty when no parameter is).
+std::string atBoundText(const std::vector<std::string>& names) {
+    std::string s;
+    for (const std::string& n : names) s += (s.empty() ? "; at its search bound: " : ", ") + n;
+    return s;
+}
+
 void printTable(const experiments::FitResult& r) {
     std::printf("target: %s; %zu incidences x %zu thresholds (", r.target.c_str(), r.angles.size(),
                 r.thresholds.size());
@@ -81,7 +88,7 @@ void printTable(const experiments::FitResult& r) {
         std::printf("%-4d %-14s %-44s %10s %10s %6d %8.2f  %s%s\n", m.rank, m.model.c_str(),
                     paramsText(m.params).c_str(), residualText(m.shapeResidual).c_str(),
                     residualText(m.valuesResidual).c_str(), m.evaluations, m.ms / 1000.0, m.stop.c_str(),
-                    m.tie ? " (tie)" : "");
+                    (atBoundText(m.atBound) + (m.tie ? " (tie)" : "")).c_str());
     std::printf(
         "\nverdict: %s (best %s residual %s; the target's resolution %.2e; no model fits above %.2e, a tie "
         "within %.2e)\n",

@@ -725,7 +725,8 @@ std::vector<std::string> rowColumns(const Experiment& e) {
              {"target", "verdict", "resolution", "best_model", "best_residual", "best_params", "fit_time_ms"})
             add(c);
         for (const std::string& m : e.fit->models)
-            for (const char* c : {"_residual", "_shape_residual", "_values_residual", "_rank", "_params"}) add(m + c);
+            for (const char* c : {"_residual", "_shape_residual", "_values_residual", "_rank", "_params", "_at_bound"})
+                add(m + c);
     }
     if (e.bounces)
         for (const auto& c : bounceColumns()) add(c);

@@ -188,6 +188,9 @@ nlohmann::json ExperimentRunner::fitRow(const scene::Values& values, nlohmann::j
         row[name + "_values_residual"] = number(f.valuesResidual);
         row[name + "_rank"] = f.rank;
         row[name + "_params"] = f.params.dump();
+        std::string atBound;  // the parameters at their search bound (fit.hpp: ModelFit::atBound)
+        for (const std::string& p : f.atBound) atBound += (atBound.empty() ? "" : ",") + p;
+        row[name + "_at_bound"] = atBound;
         if (f.rank == 1) {
             row["best_model"] = name;
             row["best_residual"] = number(f.residual);

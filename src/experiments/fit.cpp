@@ -878,6 +878,27 @@ FitResult fitModels(measurement::Session& session, const scene::Values& target, 
                 s.rgb ? rgbJson(s.f0Rgb) : nlohmann::ordered_json(s.f0 ? s.amplitudeAt(bestX[j]) : s.f0Held);
         if (s.albedo >= 0) fit.params["albedo"] = s.rgb ? rgbJson(s.albedoRgb) : nlohmann::ordered_json(s.albedo);
         if (brdf::isMicrofacet(s.model)) fit.params["geometry"] = s.geometry;
+        // A parameter at its search bound is named: the target wanted it beyond, so its number is the bound's (a
+        // degenerate fit that ranks first would otherwise read as an answer).
+        auto atBound = [&](const std::string& name, double x, double a, double b) {
+            const double margin = 1e-3 * (b - a);
+            if ((x <= a + margin || x >= b - margin) &&
+                std::find(fit.atBound.begin(), fit.atBound.end(), name) == fit.atBound.end())
+                fit.atBound.push_back(name);
+        };
+        atBound(s.width, bestX[0], s.lo, s.hi);
+        j = 1;
+        if (s.aniso) atBound("roughness_y", bestX[j++], std::log(0.1), std::log(10.0));
+        if (s.hasShape()) atBound(s.shape, bestX[j++], s.shapeLo, s.shapeHi);
+        // Schlick's F0 and the albedo have physical bounds, not search bounds: F0 = 1 is F = 1 (a target without
+        // Fresnel), the albedo's ends are the target's; only F0 = 0, a lobe switched off, is degenerate.
+        if (f0Fitted)
+            for (double v : s.rgb ? std::vector<double>{s.f0Rgb.x, s.f0Rgb.y, s.f0Rgb.z}
+                                  : std::vector<double>{s.f0 ? s.amplitudeAt(bestX[j]) : s.f0Held}) {
+                if (s.logAmplitude()) atBound(s.amplitude, s.amplitudeCoordinate(v), s.amplitudeLo(), s.amplitudeHi());
+                else if (v <= 1e-3 && fit.atBound.end() == std::find(fit.atBound.begin(), fit.atBound.end(), "f0"))
+                    fit.atBound.push_back("f0");
+            }
         fit.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         r.fits.push_back(std::move(fit));
     }
@@ -910,6 +931,7 @@ nlohmann::ordered_json toJson(const FitResult& r, const ModelFit& m) {
     nlohmann::ordered_json j;
     j["model"] = m.model;
     j["params"] = m.params;
+    j["at_bound"] = m.atBound;
     auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
     j["residual"] = number(m.residual);
     j["shape_residual"] = number(m.shapeResidual);

@@ -227,7 +227,9 @@ std::string fitSection(const Experiment& e, const Rows& rows) {
             md << buf;
         }
         const std::string best = r.value("best_model", std::string("-"));
-        md << " " << best << " " << r.value("best_params", std::string("")) << " | "
+        const std::string atBound = r.value(best + "_at_bound", std::string(""));
+        md << " " << best << " " << r.value("best_params", std::string(""))
+           << (atBound.empty() ? "" : " (at its search bound: " + atBound + ")") << " | "
            << r.value("verdict", std::string("-")) << " |\n";
         ++wins[best];
     }

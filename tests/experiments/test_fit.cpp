@@ -312,6 +312,7 @@ TEST_CASE("fit: the fit_models experiment over a folder of tables writes the ran
     CHECK(got[1]["best_model"] == "ggx");
     CHECK(got[0]["blinn_rank"] == 1);
     CHECK(got[1]["ggx_residual"].get<double>() < got[1]["blinn_residual"].get<double>());
+    CHECK(got[1]["ggx_at_bound"] == "");  // a column each model has: its parameters at their search bound
     std::ifstream summary(std::filesystem::path(out) / "summary.md");
     const std::string md((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
     CHECK(md.find("## Which model fits") != std::string::npos);
@@ -431,6 +432,25 @@ TEST_CASE("fit: a threshold whose level underflows float is refused in one line,
     // A threshold whose level stays a normal float still fits back to the target.
     const auto r = fit("--model ggx --roughness 0.1 --incidence 30 --size 64", "", options("ggx", {1e-20, 0.5}));
     CHECK(r.fits.at(0).params.at("roughness").get<double>() == doctest::Approx(0.1).epsilon(0.05));
+}
+
+TEST_CASE("fit: a parameter at its search bound is named (at_bound), never passed as the target's value") {
+    // Beckmann m 0.0006 is narrower than GGX's lowest roughness (0.001) and Phong's highest exponent (1e6): each
+    // fit stops at its bound. Before, the rows read "roughness=0.001", "exponent=1e+06" as answers.
+    const auto narrow =
+        fit("--model beckmann --roughness 0.0006 --incidence 0:60:30 --size 128", "", options("ggx,phong"));
+    for (const auto& m : narrow.fits) {
+        CAPTURE(m.model);
+        const std::string width = m.model == "ggx" ? "roughness" : "exponent";
+        REQUIRE(m.atBound.size() >= 1);
+        CHECK(m.atBound.front() == width);
+    }
+    for (const auto& j : jsonLines(narrow))
+        CHECK(j["at_bound"].at(0) == (j["model"] == "ggx" ? "roughness" : "exponent"));
+    // A fit inside its bounds names none.
+    const auto inside = fit("--model ggx --roughness 0.1 --incidence 30 --size 64", "", options("ggx"));
+    CHECK(inside.fits.at(0).atBound.empty());
+    CHECK(jsonLines(inside).at(0)["at_bound"].empty());
 }
 
 TEST_CASE("fit: real materials get the verdicts the README reports") {

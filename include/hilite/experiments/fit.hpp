@@ -82,15 +82,19 @@ struct ModelFit {
     /// by registry name: {"roughness": 0.1, "f0": 0.04, "geometry": "smith"} or {"exponent": 200}; the numbers
     /// fitted, the geometry chosen
     nlohmann::ordered_json params;
-    double residual = 0;             ///< by the ranking criterion (FitResult::rankBy)
-    double shapeResidual = 0;        ///< the shape criterion's (NaN: no sample measured)
-    double valuesResidual = 0;       ///< the values criterion's (NaN: the target has no double evaluation)
-    int rank = 0;                    ///< 1: the smallest residual
-    bool tie = false;                ///< within the tie margin of rank 1 (rank 1 itself when any other is)
-    int evaluations = 0;             ///< measured sweeps (each thresholds x incidences measurements)
-    int valueEvaluations = 0;        ///< values-criterion evaluations
-    double ms = 0;                   ///< wall time of this model's fit
-    std::string stop;                ///< NLopt's reason to stop the shape fit ("xtol reached", ...)
+    double residual = 0;        ///< by the ranking criterion (FitResult::rankBy)
+    double shapeResidual = 0;   ///< the shape criterion's (NaN: no sample measured)
+    double valuesResidual = 0;  ///< the values criterion's (NaN: the target has no double evaluation)
+    int rank = 0;               ///< 1: the smallest residual
+    bool tie = false;           ///< within the tie margin of rank 1 (rank 1 itself when any other is)
+    int evaluations = 0;        ///< measured sweeps (each thresholds x incidences measurements)
+    int valueEvaluations = 0;   ///< values-criterion evaluations
+    double ms = 0;              ///< wall time of this model's fit
+    std::string stop;           ///< NLopt's reason to stop the shape fit ("xtol reached", ...)
+    /// The fitted parameters that ended at their search bound (within 1e-3 of the range), by registry name: the
+    /// target wanted a value beyond it, so the number given is the bound's, not the target's. F0 and the albedo
+    /// have physical bounds (F0 = 1 is a target without Fresnel): only F0 below 1e-3, a lobe switched off, is named
+    std::vector<std::string> atBound;
     std::vector<FitSample> samples;  ///< at the fitted parameters, in the target's order
 };
 
@@ -129,9 +133,9 @@ size_t aspectIndex(const FitResult& r);
 /// is not usable).
 std::vector<double> aspectResiduals(const FitResult& r, const ModelFit& m);
 
-/// One JSON object per model: model, params, residual, shape_residual, values_residual, rank, rank_by, tie,
-/// verdict, resolution, tolerance, evaluations, time_ms, stop, incidence_deg and aspect_residual (per angle, at
-/// aspect_threshold), and the target.
+/// One JSON object per model: model, params, at_bound, residual, shape_residual, values_residual, rank, rank_by,
+/// tie, verdict, resolution, tolerance, evaluations, time_ms, stop, incidence_deg and aspect_residual (per angle,
+/// at aspect_threshold), and the target.
 nlohmann::ordered_json toJson(const FitResult& r, const ModelFit& m);
 
 /// Writes fit.json (one object per model per line), fit.csv (every sample of the target and of each fit),
