@@ -1,6 +1,7 @@
 #include "cli/cli.hpp"
 
 #include "cli/commands.hpp"
+#include "cli/help_format.hpp"
 #include "hilite/core/error.hpp"
 
 #include <algorithm>
@@ -33,6 +34,7 @@ int run(int argc, char** argv) {
         "offscreen (OpenGL via OSMesa or EGL) and measures the specular highlight's shape against the angle of "
         "incidence.",
         "hilite"};
+    app.formatter(std::make_shared<HelpFormatter>(helpWidth()));  // the subcommands take it as they are added
     app.require_subcommand(1);
     app.set_version_flag("--version", "hilite 0.1.0");
     // A flag given twice: the last one wins.

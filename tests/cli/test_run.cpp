@@ -15,9 +15,11 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -270,10 +272,41 @@ TEST_CASE("cli::every subcommand's --help shows an example") {
     using hilite_test::hilite;
     for (const char* sub :
          {"render", "measure", "explain", "fit", "run", "merge", "brdf", "brdf albedo", "brdf fresnel",
-          "brdf normalization", "brdf strip", "brdf tabulate", "brdf bounces", "brdf slice"}) {
+          "brdf normalization", "brdf strip", "brdf tabulate", "brdf bounces", "brdf slice", "brdf inspect"}) {
         CAPTURE(sub);
         const hilite_test::Result r = hilite(std::string(sub) + " --help");
         CHECK(r.code == 0);
         CHECK(r.out.find("Example") != std::string::npos);
     }
+}
+
+TEST_CASE("cli::--help has one option style (TYPE, then the default in words) wrapped to $COLUMNS") {
+    // Before: "--paths INT=100000" beside the registry's "--roughness NUM ... (default 0.1)", lines of 300-500
+    // characters. An example's command line stays whole (to be copied); every other line fits the width.
+    using hilite_test::hilite;
+    const std::regex typeDefault("(INT|UINT|FLOAT|NUM|TEXT)=");
+    for (const std::string columns : {"72", "120"}) {
+        ::setenv("COLUMNS", columns.c_str(), 1);
+        const size_t width = std::stoul(columns);
+        for (const std::string sub :
+             {"", "render", "measure", "explain", "fit", "run", "merge", "brdf", "brdf albedo", "brdf fresnel",
+              "brdf normalization", "brdf strip", "brdf tabulate", "brdf bounces", "brdf slice", "brdf inspect"}) {
+            CAPTURE(columns);
+            CAPTURE(sub);
+            const hilite_test::Result r = hilite(sub + " --help", true);
+            CHECK(r.code == 0);
+            std::istringstream lines(r.out);
+            for (std::string line; std::getline(lines, line);) {
+                CAPTURE(line);
+                if (line.find("hilite ") == std::string::npos) CHECK(line.size() <= width);
+                // CLI11's "TYPE=DEFAULT" and validator suffixes are gone from the option column.
+                CHECK_FALSE(std::regex_search(line, typeDefault));
+                CHECK(line.find(":NONEMPTY") == std::string::npos);
+            }
+        }
+    }
+    ::unsetenv("COLUMNS");
+    const hilite_test::Result bounces = hilite("brdf bounces --help", true);
+    CHECK(bounces.out.find("--paths INT") != std::string::npos);
+    CHECK(bounces.out.find("(default 100000)") != std::string::npos);
 }

@@ -84,6 +84,7 @@ def main():
     have_python = os.path.isdir(os.path.join(pydir, "hilite"))
     env["PYTHONPATH"] = pydir
     env.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
+    env["COLUMNS"] = "100"  # help output is wrapped to $COLUMNS off a terminal: the docs show it at 100
     ran, fails = [], []
     # Every relative link of the pages leads to a file of the tree (a page moved, a picture renamed).
     for doc in docs:
