@@ -1439,7 +1439,7 @@ std::string check(const Param& p, const std::string& text) {
                 const double v = number(part, err);
                 if (!err.empty()) break;
                 if (!inRange(v)) {
-                    err = "must be a finite number in " + p.allowed().substr(p.allowed().find('[')) + " (got " +
+                    err = "must be a finite number in " + rangeText(p.lo, p.hi, p.openLo, p.openHi) + " (got " +
                           fmt(v) + ")";
                     break;
                 }
