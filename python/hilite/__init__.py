@@ -44,11 +44,12 @@ if not _os.path.isdir(_os.path.join(_here, "libexec")) and _os.path.isfile(_buil
     _hilite.set_probe_executable(_os.path.normpath(_build_probe))
 
 
-def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None):
+def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None, fsync_each_row=False):
     """Runs an experiment file (or one shipped in experiments/, by name) into the folder `out`
     (default results/<name>), as ``hilite run`` does: every configuration is checked and every .brdf probed
     before anything is written; the folder is locked while it is written; ``resume=True`` keeps the rows of
     the same experiment already there. ``shard="K/N"`` runs configurations i with i mod N = K - 1.
+    Rows are made durable together, at most every 100 ms and at the end; ``fsync_each_row=True`` after each.
     Returns {name, dir, configurations, measured, seconds, finalized}."""
     for name, v in (("experiment", experiment), ("out", out)):
         if v is not None and not isinstance(v, (str, _os.PathLike)):
@@ -59,8 +60,10 @@ def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None):
         raise TypeError(f"shard: expected 'K/N', got {type(shard).__name__}")
     if gl_backend is not None and not isinstance(gl_backend, str):
         raise TypeError(f"gl_backend: expected 'auto', 'osmesa', 'egl' or 'egl-device', got {type(gl_backend).__name__}")
+    if not isinstance(fsync_each_row, bool):
+        raise TypeError(f"fsync_each_row: expected True or False, got {type(fsync_each_row).__name__}")
     return _hilite.run(_os.fspath(experiment), "" if out is None else _os.fspath(out), resume, shard or "",
-                       gl_backend or "")
+                       gl_backend or "", fsync_each_row)
 
 
 def merge(shards, out, *, gl_backend=None):

@@ -320,13 +320,14 @@ struct CurrentAgain {
 };
 
 py::dict runExperiment(const std::string& experiment, const std::string& out, bool resume, const std::string& shard,
-                       const std::string& backend) {
+                       const std::string& backend, bool fsyncEachRow) {
     experiments::RunSummary s;
     {
         py::gil_scoped_release release;
         experiments::RunOptions o;
         experiments::parseShard(shard, o.shardK, o.shardN, "shard");
         o.experiment = experiment, o.out = out, o.resume = resume, o.backend = backend, o.outName = "out";
+        o.fsyncEachRow = fsyncEachRow;
         worker().run([&](measurement::Session& session) {
             const CurrentAgain restore{session};
             s = experiments::runExperiment(o);
@@ -427,7 +428,7 @@ PYBIND11_MODULE(_hilite, m) {
     m.def("load_scene", [](const std::string& path) { return python::items(scene::loadSceneFile(path)); });
     m.def("write_scene", &writeScene, py::arg("path"), py::arg("items"));
     m.def("run", &runExperiment, py::arg("experiment"), py::arg("out"), py::arg("resume"), py::arg("shard"),
-          py::arg("backend"));
+          py::arg("backend"), py::arg("fsync_each_row"));
     m.def("merge", &mergeShards, py::arg("shards"), py::arg("out"), py::arg("backend"));
     m.def("set_probe_executable", &measurement::setProbeExecutable);
     m.def("gl_renderer", [] {

@@ -17,7 +17,7 @@ namespace {
 
 struct RunFlags {
     std::string experiment, out, shard;
-    bool resume = false, check = false;
+    bool resume = false, check = false, fsyncEachRow = false;
     std::string backend;
 };
 
@@ -25,6 +25,7 @@ int runExperiment(const RunFlags& f) {
     experiments::RunOptions o;
     experiments::parseShard(f.shard, o.shardK, o.shardN);
     o.experiment = f.experiment, o.out = f.out, o.resume = f.resume, o.backend = f.backend, o.check = f.check;
+    o.fsyncEachRow = f.fsyncEachRow;
     o.progress = [](size_t done, size_t total, double seconds) { ProgressLine::show("", done, total, seconds); };
     const experiments::RunSummary s = experiments::runExperiment(o);
     if (f.check) {
@@ -64,6 +65,10 @@ Action addRun(CLI::App& app) {
     app.add_flag("--resume", f->resume, "keep the completed rows already in the output folder and run the rest");
     app.add_option("--shard", f->shard, "run only configurations i with i mod N = K-1 (K/N, 1-based)");
     app.add_option("--gl-backend", f->backend, "auto | osmesa | egl | egl-device");
+    app.add_flag("--fsync-each-row", f->fsyncEachRow,
+                 "make each row durable (fsync) before the next is measured; by default rows are made durable "
+                 "together, at most every 100 ms and at the end: a killed run loses no written row either way, a "
+                 "power loss the rows of the last 100 ms, measured again by --resume");
     app.add_flag("--check", f->check,
                  "check the file, every configuration and the output folder as a run does first, then stop: nothing "
                  "measured or written");

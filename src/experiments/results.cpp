@@ -313,8 +313,8 @@ std::vector<nlohmann::json> resumedRows(const std::string& dir, const Experiment
 }
 
 ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::string>& columns, bool resume,
-                             const Experiment& e, const Configurations& configs)
-    : m_columns(columns), m_dir(dir) {
+                             const Experiment& e, const Configurations& configs, double syncInterval)
+    : m_columns(columns), m_dir(dir), m_syncInterval(syncInterval), m_lastSync(std::chrono::steady_clock::now()) {
     const std::vector<nlohmann::json> kept = resume ? resumedRows(dir, e, configs) : std::vector<nlohmann::json>{};
     for (const auto& r : kept) m_done.insert(r["config"].get<long>());
     // Rewrite both files from the complete rows (in their original order), then append to them.
@@ -330,11 +330,18 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::stri
 }
 
 void ResultsWriter::append(const nlohmann::json& row) {
-    // One write per line, fsync'd: a kill or a full disk leaves at worst one torn last line, dropped on resume.
-    // The JSON row first: it is what --resume trusts; the CSV is rewritten from it.
+    // One write per line: a kill or a full disk leaves at worst one torn last line, dropped on resume. The JSON
+    // row first: it is what --resume trusts; the CSV is rewritten from it. An fsync per row cost 2-9 ms on a busy
+    // ext4 disk, the measurement itself 1.5 ms: rows are made durable together (group commit, as databases do).
     try {
-        m_jsonl->append(row.dump() + "\n");
-        m_csv->append(csvLine(m_columns, row), false);  // fsync'd in finish(): each fsync cost 2-9 ms a row here (ext4)
+        m_jsonl->append(row.dump() + "\n", false);
+        m_csv->append(csvLine(m_columns, row), false);
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - m_lastSync).count() >= m_syncInterval) {
+            m_jsonl->sync();
+            ++m_syncs;
+            m_lastSync = std::chrono::steady_clock::now();
+        }
     } catch (const SystemError& e) {
         throw SystemError(std::string(e.what()) + "; the " + std::to_string(m_done.size()) +
                           " rows written before are intact: free space and rerun with --resume to finish");
@@ -342,7 +349,11 @@ void ResultsWriter::append(const nlohmann::json& row) {
     m_done.insert(row["config"].get<long>());
 }
 
-void ResultsWriter::finish() { m_csv->sync(); }
+void ResultsWriter::finish() {
+    m_jsonl->sync();
+    ++m_syncs;
+    m_csv->sync();
+}
 
 std::string csvHeaderLine(const std::vector<std::string>& columns) { return header(columns); }
 std::string csvRowLine(const std::vector<std::string>& columns, const nlohmann::json& row) {

@@ -1,14 +1,17 @@
 #pragma once
 // Result files of an experiment, streamed row by row so a killed run keeps every completed row:
 // results.jsonl (one JSON object per configuration) and results.csv (the same rows, fixed columns).
-// Each row is appended whole and fsync'd before the next is measured; a partial last line (a kill or a full
-// disk mid-write) is dropped on resume. Each JSON row carries the fingerprint of the configuration it
+// Each row is appended whole as it is measured (a killed process loses none: its writes are in the kernel);
+// results.jsonl is fsync'd by group commit, at most every 100 ms and at the end (a power loss costs the rows of
+// the last interval, measured again by --resume), or after every row when asked. A partial last line (a kill or
+// a full disk mid-write) is dropped on resume. Each JSON row carries the fingerprint of the configuration it
 // measured, so --resume and merge never keep a row of another (or an edited) experiment.
 
 #include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <memory>
 #include <set>
 #include <string>
@@ -61,19 +64,26 @@ public:
     /// Opens dir/results.{jsonl,csv}. With `resume`, keeps the complete rows already there (rewriting
     /// both files from them, by rename) and reports their configs in done(); otherwise starts empty.
     /// Kept rows must pass checkRows against `configs`.
+    /// results.jsonl is fsync'd when `syncInterval` seconds have passed since the last fsync (0: after every row),
+    /// and by finish().
     ResultsWriter(const std::string& dir, const std::vector<std::string>& columns, bool resume, const Experiment& e,
-                  const Configurations& configs);
+                  const Configurations& configs, double syncInterval = kGroupCommitSeconds);
+    /// Group commit's interval: rows appended within it are made durable together.
+    static constexpr double kGroupCommitSeconds = 0.1;
     ResultsWriter(const ResultsWriter&) = delete;
     ResultsWriter& operator=(const ResultsWriter&) = delete;
 
     const std::set<long>& done() const { return m_done; }
-    /// Appends one row to both files, each written whole (results.jsonl fsync'd) (SystemError on failure: the rows
-    /// appended before stay intact, and --resume measures the rest).
+    /// Appends one row to both files, each written whole, results.jsonl fsync'd when the interval has passed
+    /// (SystemError on failure: the rows appended before stay intact, and --resume measures the rest).
     void append(const nlohmann::json& row);
 
-    /// fsync's results.csv (each row of results.jsonl is fsync'd as it is appended; the CSV, which --resume
-    /// rebuilds from it, once here). Call before the run reports success.
+    /// fsync's both files (results.csv, which --resume rebuilds from results.jsonl, only here). Call before the
+    /// run reports success.
     void finish();
+
+    /// fsyncs of results.jsonl since the writer opened (what group commit saves is visible in tests).
+    size_t syncs() const { return m_syncs; }
 
     /// Writes rows (sorted by "config") to dir/results.{jsonl,csv} atomically: what `merge` produces.
     static void writeAll(const std::string& dir, const std::vector<std::string>& columns,
@@ -84,6 +94,9 @@ private:
     std::unique_ptr<io::DurableAppender> m_jsonl, m_csv;
     std::set<long> m_done;
     std::string m_dir;
+    double m_syncInterval;
+    std::chrono::steady_clock::time_point m_lastSync;
+    size_t m_syncs = 0;
 };
 
 }  // namespace hilite::experiments

@@ -78,7 +78,8 @@ RunSummary runExperiment(const RunOptions& o) {
     }
     io::makeOutputDir(s.dir, o.outName);          // only now: bad input leaves not even an empty folder behind
     const io::FolderLock lock(s.dir, o.outName);  // a second run or merge into this folder is refused, not mixed in
-    ResultsWriter writer(s.dir, runner.columns(), o.resume, exp, configs);
+    ResultsWriter writer(s.dir, runner.columns(), o.resume, exp, configs,
+                         o.fsyncEachRow ? 0.0 : ResultsWriter::kGroupCommitSeconds);
     writeExperimentCopy(exp, s.dir);
     // This shard's configurations only, each built when measured (10^6 held at once took 1.1 GB).
     const size_t first = size_t(o.shardK - 1), stride = size_t(o.shardN);
@@ -92,6 +93,7 @@ RunSummary runExperiment(const RunOptions& o) {
         } catch (const InputError& e) {  // a file changed after validation: the rows written are kept, say so
             const size_t kept = writer.done().size();  // resumed and appended
             if (kept == 0) throw;
+            writer.finish();  // the rows kept made durable before the run stops
             throw InputError(std::string(e.what()) + " (configuration " + std::to_string(i) + "; " +
                              std::to_string(kept) + (kept == 1 ? " row" : " rows") + " kept in " + s.dir +
                              ": fix it and rerun with --resume)");

@@ -20,6 +20,9 @@ struct RunOptions {
     /// Only check: the file, every configuration, every .brdf it names and the output folder, as a run does
     /// before it writes; then return, nothing measured or written (RunSummary::configurations says how many).
     bool check = false;
+    /// fsync results.jsonl after every row; by default rows are made durable together, at most every 100 ms and at
+    /// the end (a killed run loses no written row either way; a power loss the rows of the last interval)
+    bool fsyncEachRow = false;
     /// Called after each row (rows measured now, rows to measure now, seconds so far); may be empty.
     std::function<void(size_t, size_t, double)> progress;
 };
