@@ -56,6 +56,8 @@ int run(int argc, char** argv) {
         &addFit);
     add("run", "run an experiment (sweeps, plots, contact sheet, summary) into results/<name>/", &addRun);
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
+    add("submit", "run an experiment on a Slurm cluster: an array job of shards and a merge job after it", &addSubmit);
+    add("status", "a submitted folder's progress: rows per shard, failed shards and their last error line", &addStatus);
     if (argc <= 1) {  // bare `hilite`: the usage, as --help prints it, where CLI11 said only "A subcommand is required"
         std::cout << app.help();
         return finishStdout(0);

@@ -22,6 +22,8 @@ Action addMeasure(CLI::App& app);
 Action addBrdf(CLI::App& app);
 Action addRun(CLI::App& app);
 Action addMerge(CLI::App& app);
+Action addSubmit(CLI::App& app);  ///< cli/submit_cmd.cpp
+Action addStatus(CLI::App& app);
 Action addExplain(CLI::App& app);
 Action addFit(CLI::App& app);  ///< cli/fit_cmd.cpp
 /// `brdf bounces` (cli/bounces_cmd.cpp): the subcommand, added to `brdf`, and its action.

@@ -310,3 +310,99 @@ TEST_CASE("cli::--help has one option style (TYPE, then the default in words) wr
     CHECK(bounces.out.find("--paths INT") != std::string::npos);
     CHECK(bounces.out.find("(default 100000)") != std::string::npos);
 }
+
+namespace {
+
+/// Stand-ins for Slurm's sbatch, squeue and scancel (tests/cli/fake_slurm/): sbatch runs a job at once (an array's
+/// tasks in turn, output to --output/--error with %a), holds a job whose afterok dependency failed as pending (as
+/// Slurm does), and skips the task $FAKE_SLURM_CANCEL as if scancel'd before it ran, with Slurm's log line.
+struct FakeSlurm : Dir {
+    FakeSlurm() {
+        const std::string bin = HILITE_SOURCE_DIR_STR "/tests/cli/fake_slurm";
+        path = "PATH=" + bin + ":$PATH FAKE_SLURM_STATE=" + (*this / "state") + " ";
+    }
+    std::string path;  ///< the environment prefix of a command line
+};
+
+}  // namespace
+
+TEST_CASE(
+    "cli::submit runs an experiment as an array job and a merge job: rows equal a single run, resume after a "
+    "cancelled task") {
+    FakeSlurm d;
+    const std::string exe = HILITE_EXE;
+    REQUIRE(sh(exe + " run " + (d / "small.toml") + " -o " + (d / "single")) == 0);
+    // A task cancelled: --wait reports it, cancels the merge (its afterok can never be met) and exits 1.
+    const std::string submit = d.path + "FAKE_SLURM_CANCEL=2 " + exe + " submit " + (d / "small.toml") +
+                               " --shards 3 -o " + (d / "cluster") + " --wait --sbatch=--time=5";
+    FILE* p = popen((submit + " 2>&1").c_str(), "r");
+    std::string out;
+    char buf[4096];
+    while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+    const int status = pclose(p);
+    CAPTURE(out);
+    CHECK(WEXITSTATUS(status) == 1);
+    CHECK(out.find("small: 8 configurations in 3 shards; array job") != std::string::npos);
+    CHECK(out.find("CANCELLED") != std::string::npos);  // shard 2's log line, in the status table
+    CHECK(out.find("the merge was cancelled") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(d / "cluster/results.csv"));
+    // status says the same from the folder alone.
+    const hilite_test::Result st = hilite_test::hilite("status " + (d / "cluster"), true);
+    CHECK(st.code == 0);
+    CHECK(st.out.find("small: 5 of 8 rows in 3 shards") != std::string::npos);
+    // --resume resubmits shard 2 alone, then the merge: the single run's rows.
+    REQUIRE(sh(d.path + exe + " submit --resume -o " + (d / "cluster") + " --wait") == 0);
+    std::ifstream calls(d / "state/calls");
+    const std::string log((std::istreambuf_iterator<char>(calls)), std::istreambuf_iterator<char>());
+    CAPTURE(log);
+    CHECK(log.find("--array=1-3") != std::string::npos);
+    CHECK(log.find("--array=2 ") != std::string::npos);
+    CHECK(log.find("--time=5") != std::string::npos);  // --sbatch passed to every call
+    CHECK(comparable(readCsv(d / "cluster/results.csv")) == comparable(readCsv(d / "single/results.csv")));
+    const hilite_test::Result done = hilite_test::hilite("status " + (d / "cluster"), true);
+    CHECK(done.out.find("small: 8 of 8 rows in 3 shards (100%); merge: done, 8 rows") != std::string::npos);
+}
+
+TEST_CASE("cli::submit refuses bad input in one line, exit 2, nothing written; --dry-run writes the scripts only") {
+    FakeSlurm d;
+    const std::string exe = HILITE_EXE;
+    struct Case {
+        std::string args, message;
+    };
+    const Case bad[] = {
+        {" --shards 0 -o " + (d / "a"), "--shards: expected 1 to 8"},
+        {" --shards 9 -o " + (d / "a"), "--shards: expected 1 to 8"},
+        {" --shards 2 -o " + (d / "a") + " --engine pbs", "--engine: unknown 'pbs'"},
+        {" --shards 2 -o " + (d / "a%j"), "which Slurm reads as a file-name pattern"},
+    };
+    for (const Case& c : bad) {
+        CAPTURE(c.args);
+        const hilite_test::Result r = hilite_test::hilite("submit " + (d / "small.toml") + c.args);
+        CHECK(r.code == 2);
+        CHECK(hilite_test::lines(r.out) == 1);
+        CHECK(r.out.find(c.message) != std::string::npos);
+        CHECK_FALSE(std::filesystem::exists(d / "a"));
+    }
+    // No sbatch on PATH: refused unless --dry-run.
+    std::filesystem::create_directories(d / "empty");
+    const std::string noSlurm =
+        "PATH=" + (d / "empty") + " " + exe + " submit " + (d / "small.toml") + " --shards 2 -o " + (d / "a");
+    CHECK(sh(noSlurm) == 2);
+    CHECK_FALSE(std::filesystem::exists(d / "a"));
+    REQUIRE(sh(noSlurm + " --dry-run") == 0);
+    CHECK(std::filesystem::exists(d / "a/slurm/array.sbatch"));
+    CHECK(std::filesystem::exists(d / "a/slurm/merge.sbatch"));
+    CHECK_FALSE(std::filesystem::exists(d / "state/calls"));  // nothing submitted
+    // A folder already submitted is refused without --resume.
+    const hilite_test::Result again =
+        hilite_test::hilite("submit " + (d / "small.toml") + " --shards 2 -o " + (d / "a") + " --dry-run");
+    CHECK(again.code == 2);
+    CHECK(again.out.find("already holds a submitted run") != std::string::npos);
+    // A file name is data in the scripts, never shell code.
+    d.write("it's $(touch pwned).toml", kExperiment);
+    const std::string quoted = "'" + (d / "it'\\''s $(touch pwned).toml") + "'";  // one word for the test's shell
+    REQUIRE(sh(d.path + exe + " submit " + quoted + " --shards 2 -o " + (d / "q") + " --wait") == 0);
+    CHECK_FALSE(std::filesystem::exists(d / "q/slurm/pwned"));
+    CHECK_FALSE(std::filesystem::exists("pwned"));
+    CHECK(comparable(readCsv(d / "q/results.csv")).size() == 8);
+}
