@@ -206,12 +206,24 @@ SubmitResult submitExperiment(const SubmitOptions& o) {
         throw InputError(
             "submit: sbatch (Slurm's client) is not on PATH: install Slurm's client (Debian: slurm-client) "
             "or write the scripts only with --dry-run");
-    if (o.resume && !o.dryRun) {  // jobs of the earlier submission still queued would write the same shards
+    // The earlier submission's jobs: its array still queued or running would write the same shards (refused); its
+    // merge pending behind a failed array can never run (Slurm keeps it for ever): cancelled, a new one follows.
+    std::string staleMerge;
+    if (o.resume && !o.dryRun) {
         const std::string squeue = findOnPath("squeue");
-        for (const char* key : {"array_job", "merge_job"})
-            if (!squeue.empty() && before.contains(key) && inQueue(squeue, before[key].get<std::string>()))
-                throw InputError("--resume: job " + before[key].get<std::string>() + " of " + o.out +
-                                 " is still queued or running: wait for it, or scancel it first");
+        const std::string array = before.value("array_job", std::string()), merge = before.value("merge_job", "");
+        if (!squeue.empty() && inQueue(squeue, array))
+            throw InputError("--resume: array job " + array + " of " + o.out +
+                             " is still queued or running: wait for it, or scancel it first");
+        if (!squeue.empty() && inQueue(squeue, merge)) {
+            size_t rows = 0;
+            for (int k = 1; k <= before["shards"].get<int>(); ++k)
+                rows += countRows(dir + "/shards/" + std::to_string(k) + "/results.jsonl");
+            if (rows >= before["configurations"].get<size_t>())
+                throw InputError("--resume: merge job " + merge + " of " + o.out +
+                                 " is queued or running and every shard is complete: wait for it");
+            staleMerge = merge;
+        }
     }
 
     SubmitResult r;
@@ -221,6 +233,10 @@ SubmitResult submitExperiment(const SubmitOptions& o) {
             countRows(dir + "/shards/" + std::to_string(k) + "/results.jsonl") < shardSize(configs.size(), k, shards))
             r.submitted.push_back(k);
 
+    if (!staleMerge.empty()) {
+        const std::string scancel = findOnPath("scancel");
+        if (!scancel.empty()) runProgram({scancel, staleMerge});
+    }
     io::makeOutputDir(dir, o.outName);
     fs::create_directories(dir + "/slurm/logs");
     fs::create_directories(dir + "/shards");

@@ -363,7 +363,7 @@ TEST_CASE(
     CHECK(done.out.find("small: 8 of 8 rows in 3 shards (100%); merge: done, 8 rows") != std::string::npos);
 }
 
-TEST_CASE("cli::submit refuses bad input in one line, exit 2, nothing written; --dry-run writes the scripts only") {
+TEST_CASE("cli::submit refuses bad input in one line, exit 2, nothing written, and --dry-run writes the scripts only") {
     FakeSlurm d;
     const std::string exe = HILITE_EXE;
     struct Case {
