@@ -10,16 +10,26 @@ for p in munged slurmctld slurmd sbatch squeue scancel sinfo; do
   command -v "$p" >/dev/null || { echo "SKIP: $p not found (Debian packages slurm-wlm and munge; scripts/quickstart installs them)"; exit 77; }
 done
 [[ $(id -u) == 0 ]] || { echo "SKIP: a single-node Slurm is started as root here (slurmd runs jobs as their user)"; exit 77; }
+# slurmd 22.05 initializes its cgroup plugin whatever the configuration and stops without a cgroup file system
+# (seen in a debootstrap chroot with /sys mounted but not /sys/fs/cgroup).
+grep -q ' /sys/fs/cgroup ' /proc/mounts ||
+  { echo "SKIP: no cgroup file system at /sys/fs/cgroup, which slurmd 22.05 needs (a chroot: mount --rbind /sys)"; exit 77; }
 
 tmp=$(mktemp -d /tmp/hilite-slurm.XXXXXX)
 stop() {
+  local rc=$?
+  if ((rc != 0 && rc != 77)); then  # what the daemons said, before their folder goes
+    for log in "$tmp"/*.log; do [[ -e $log ]] && { echo "--- $log"; tail -8 "$log"; }; done
+  fi
   for pid in "$tmp"/slurmd.pid "$tmp"/slurmctld.pid "$tmp"/munged.pid; do
-    [[ -s $pid ]] && kill "$(cat "$pid")" 2>/dev/null || true
+    [[ -s $pid ]] && kill "$(cat "$pid" 2>/dev/null)" 2>/dev/null || true
   done
   for pid in "$tmp"/slurmd.pid "$tmp"/slurmctld.pid "$tmp"/munged.pid; do  # gone within 10 s, or killed
     [[ -s $pid ]] || continue
-    for i in $(seq 100); do kill -0 "$(cat "$pid")" 2>/dev/null || break; sleep 0.1; done
-    kill -9 "$(cat "$pid")" 2>/dev/null || true
+    local n
+    n=$(cat "$pid" 2>/dev/null) || continue  # a daemon removes its pid file as it exits
+    for i in $(seq 100); do kill -0 "$n" 2>/dev/null || break; sleep 0.1; done
+    kill -9 "$n" 2>/dev/null || true
   done
   rm -rf "$tmp"
 }
