@@ -169,7 +169,8 @@ class MachineError(RuntimeError): ...
              "    scene: Scene | str | os.PathLike[str] | None = None,\n" + keywords(False) +
              ") -> list[FitRow]:\n" + doc(hilite.fit) + "    ...\n\n")
     init += ("def run(experiment: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, *, resume: bool = False,\n"
-             "        shard: str | None = None, gl_backend: str | None = None, fsync_each_row: bool = False) -> RunSummary:\n" + doc(hilite.run) + "    ...\n\n")
+             "        shard: str | None = None, gl_backend: str | None = None, fsync_each_row: bool = False,\n"
+             "        client: Any = None, chunk_size: int | None = None) -> RunSummary:\n" + doc(hilite.run) + "    ...\n\n")
     init += ("def merge(shards: Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *,\n"
              "          gl_backend: str | None = None) -> MergeSummary:\n" + doc(hilite.merge) + "    ...\n\n")
     init += "def gl_renderer() -> str: ...\ndef parameters() -> list[dict[str, Any]]: ...\n\n"

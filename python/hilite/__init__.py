@@ -44,13 +44,18 @@ if not _os.path.isdir(_os.path.join(_here, "libexec")) and _os.path.isfile(_buil
     _hilite.set_probe_executable(_os.path.normpath(_build_probe))
 
 
-def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None, fsync_each_row=False):
+def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None, fsync_each_row=False, client=None,
+        chunk_size=None):
     """Runs an experiment file (or one shipped in experiments/, by name) into the folder `out`
     (default results/<name>), as ``hilite run`` does: every configuration is checked and every .brdf probed
     before anything is written; the folder is locked while it is written; ``resume=True`` keeps the rows of
     the same experiment already there. ``shard="K/N"`` runs configurations i with i mod N = K - 1.
     Rows are made durable together, at most every 100 ms and at the end; ``fsync_each_row=True`` after each.
-    Returns {name, dir, configurations, measured, seconds, finalized}."""
+    ``client=`` a ``dask.distributed.Client``: the configurations are measured on its workers (each in process,
+    with its own GL context), ``chunk_size`` at a time (default: about four chunks per worker, at most 256),
+    and their rows written here into `out` as they come back; the folder ends as a single run's, row for row.
+    Workers read the experiment and its data files at this process's paths (on several machines: a shared
+    file system). Returns {name, dir, configurations, measured, seconds, finalized}."""
     for name, v in (("experiment", experiment), ("out", out)):
         if v is not None and not isinstance(v, (str, _os.PathLike)):
             raise TypeError(f"{name}: expected a file or folder name (str or os.PathLike), got {type(v).__name__}")
@@ -62,8 +67,19 @@ def run(experiment, out=None, *, resume=False, shard=None, gl_backend=None, fsyn
         raise TypeError(f"gl_backend: expected 'auto', 'osmesa', 'egl' or 'egl-device', got {type(gl_backend).__name__}")
     if not isinstance(fsync_each_row, bool):
         raise TypeError(f"fsync_each_row: expected True or False, got {type(fsync_each_row).__name__}")
-    return _hilite.run(_os.fspath(experiment), "" if out is None else _os.fspath(out), resume, shard or "",
-                       gl_backend or "", fsync_each_row)
+    if chunk_size is not None and (isinstance(chunk_size, bool) or not isinstance(chunk_size, int)):
+        raise TypeError(f"chunk_size: expected a whole number of configurations, got {type(chunk_size).__name__}")
+    if chunk_size is not None and not 1 <= chunk_size <= 1000000:
+        raise InputError(f"chunk_size: expected 1 to 1000000 configurations a task (got {chunk_size})")
+    if chunk_size is not None and client is None:
+        raise InputError("chunk_size: only with client= (a Dask run)")
+    exp, dest = _os.fspath(experiment), "" if out is None else _os.fspath(out)
+    if client is not None:
+        if not all(hasattr(client, a) for a in ("map", "cancel", "scheduler_info")):
+            raise TypeError(f"client: expected a dask.distributed.Client, got {type(client).__name__}")
+        from ._dask import run_on_client
+        return run_on_client(client, exp, dest, resume, shard or "", gl_backend or "", fsync_each_row, chunk_size)
+    return _hilite.run(exp, dest, resume, shard or "", gl_backend or "", fsync_each_row)
 
 
 def merge(shards, out, *, gl_backend=None):

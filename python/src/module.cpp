@@ -339,6 +339,93 @@ py::dict runExperiment(const std::string& experiment, const std::string& out, bo
     return d;
 }
 
+py::dict summaryDict(const experiments::RunSummary& s) {
+    py::dict d;
+    d["name"] = s.name, d["dir"] = s.dir, d["configurations"] = s.configurations, d["measured"] = s.measured;
+    d["seconds"] = s.seconds, d["finalized"] = s.finalized;
+    return d;
+}
+
+/// Runs `job` on the GL thread, the module's context current again after it; the GIL released meanwhile.
+template <class F>
+void onGlThread(F&& job) {
+    py::gil_scoped_release release;
+    worker().run([&](measurement::Session& session) {
+        const CurrentAgain restore{session};
+        job();
+    });
+}
+
+/// An owned object whose GL resources must go on the GL thread (a context is released where it is current);
+/// at interpreter exit, when that thread has stopped, it is left to the process's end.
+template <class T>
+void dropOnGlThread(std::unique_ptr<T>& p) {
+    if (!p) return;
+    try {
+        onGlThread([&] { p.reset(); });
+    } catch (...) {
+        (void)p.release();
+    }
+}
+
+/// hilite.run(..., client=): the client's side, rows fed in by the workers' results (python/hilite/_dask.py).
+class PyDistributedRun {
+public:
+    PyDistributedRun(const std::string& experiment, const std::string& out, bool resume, const std::string& shard,
+                     const std::string& backend, bool fsyncEachRow) {
+        experiments::RunOptions o;
+        experiments::parseShard(shard, o.shardK, o.shardN, "shard");
+        o.experiment = experiment, o.out = out, o.resume = resume, o.backend = backend, o.outName = "out";
+        o.fsyncEachRow = fsyncEachRow;
+        onGlThread([&] { m_run = std::make_unique<experiments::DistributedRun>(o); });
+    }
+    ~PyDistributedRun() { dropOnGlThread(m_run); }
+    experiments::DistributedRun& get() {
+        if (!m_run) throw InputError("run: this run has been closed");
+        return *m_run;
+    }
+    void append(const std::vector<std::string>& rows) {
+        py::gil_scoped_release release;
+        for (const auto& r : rows) get().append(r);
+    }
+    py::dict finish() {
+        experiments::RunSummary s;
+        onGlThread([&] {  // finalize renders the contact sheet: on the GL thread
+            s = get().finish();
+            m_run.reset();
+        });
+        return summaryDict(s);
+    }
+    size_t close() {  // the rows appended made durable, the lock released; how many were appended
+        const size_t n = m_run ? m_run->appended() : 0;
+        dropOnGlThread(m_run);
+        return n;
+    }
+
+private:
+    std::unique_ptr<experiments::DistributedRun> m_run;
+};
+
+/// A Dask worker's side: the experiment loaded once per worker process, configurations measured by index.
+class PyMeasurer {
+public:
+    PyMeasurer(const std::string& experiment, const std::string& backend) {
+        onGlThread([&] { m_m = std::make_unique<experiments::ConfigurationMeasurer>(experiment, backend); });
+    }
+    ~PyMeasurer() { dropOnGlThread(m_m); }
+    std::vector<std::string> measure(const std::vector<size_t>& indices) {
+        std::vector<std::string> rows;
+        onGlThread([&] {
+            for (size_t i : indices) rows.push_back(m_m->measure(i));
+        });
+        return rows;
+    }
+    size_t configurations() const { return m_m->configurations(); }
+
+private:
+    std::unique_ptr<experiments::ConfigurationMeasurer> m_m;
+};
+
 py::dict mergeShards(const std::vector<std::string>& shards, const std::string& out, const std::string& backend) {
     experiments::MergeSummary s;
     {
@@ -430,6 +517,20 @@ PYBIND11_MODULE(_hilite, m) {
     m.def("run", &runExperiment, py::arg("experiment"), py::arg("out"), py::arg("resume"), py::arg("shard"),
           py::arg("backend"), py::arg("fsync_each_row"));
     m.def("merge", &mergeShards, py::arg("shards"), py::arg("out"), py::arg("backend"));
+    py::class_<PyDistributedRun>(m, "_DistributedRun")
+        .def(py::init<const std::string&, const std::string&, bool, const std::string&, const std::string&, bool>(),
+             py::arg("experiment"), py::arg("out"), py::arg("resume"), py::arg("shard"), py::arg("backend"),
+             py::arg("fsync_each_row"))
+        .def_property_readonly("experiment_path", [](PyDistributedRun& r) { return r.get().experimentPath(); })
+        .def_property_readonly("dir", [](PyDistributedRun& r) { return r.get().dir(); })
+        .def("todo", [](PyDistributedRun& r) { return r.get().todo(); })
+        .def("append", &PyDistributedRun::append, py::arg("rows"))
+        .def("finish", &PyDistributedRun::finish)
+        .def("close", &PyDistributedRun::close);
+    py::class_<PyMeasurer>(m, "_Measurer")
+        .def(py::init<const std::string&, const std::string&>(), py::arg("experiment"), py::arg("backend"))
+        .def("measure", &PyMeasurer::measure, py::arg("indices"))
+        .def_property_readonly("configurations", &PyMeasurer::configurations);
     m.def("set_probe_executable", &measurement::setProbeExecutable);
     m.def("gl_renderer", [] {
         std::string name;

@@ -6,6 +6,7 @@
 #include "hilite/core/error.hpp"
 #include "io/image_io.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -57,30 +58,69 @@ void parseShard(const std::string& s, int& k, int& n, const std::string& name) {
     k = int(*a), n = int(*b);
 }
 
-RunSummary runExperiment(const RunOptions& o) {
+namespace {
+
+void checkOptions(const RunOptions& o) {
     if (o.shardN < 1 || o.shardK < 1 || o.shardK > o.shardN)
         throw InputError("shard: expected 1 <= K <= N (got " + std::to_string(o.shardK) + "/" +
                          std::to_string(o.shardN) + ")");
     if (o.experiment.empty()) throw InputError("run: empty experiment name (give a file, or a name in experiments/)");
-    const Experiment exp = loadExperiment(findExperiment(o.experiment));
+}
+
+/// An experiment opened for a run: loaded, every configuration validated, this shard's .brdf files probed, the
+/// output folder checked; open() then makes the folder, locks it and starts its result files. Not movable (the
+/// configurations and the runner refer to `exp`).
+struct OpenedRun {
+    explicit OpenedRun(const RunOptions& o)
+        : options(o),
+          exp((checkOptions(o), loadExperiment(findExperiment(o.experiment)))),
+          configs(exp.configurations()),  // validates every configuration before anything runs
+          runner(exp, o.backend),
+          dir(o.out.empty() ? "results/" + exp.name : o.out) {
+        runner.probeAll(configs, o.shardK, o.shardN);  // a .brdf that does not build or runs too long: nothing written
+        checkResultFolder(dir, o.outName);
+    }
+    OpenedRun(const OpenedRun&) = delete;
+    OpenedRun& operator=(const OpenedRun&) = delete;
+
+    void open() {
+        io::makeOutputDir(dir, options.outName);  // only now: bad input leaves not even an empty folder behind
+        lock = std::make_unique<io::FolderLock>(dir, options.outName);  // a second run or merge is refused
+        writer = std::make_unique<ResultsWriter>(dir, runner.columns(), options.resume, exp, configs,
+                                                 options.fsyncEachRow ? 0.0 : ResultsWriter::kGroupCommitSeconds);
+        writeExperimentCopy(exp, dir);
+    }
+    bool ours(size_t i) const { return i % size_t(options.shardN) == size_t(options.shardK - 1); }
+    size_t shardSize() const {
+        const size_t first = size_t(options.shardK - 1), n = size_t(options.shardN);
+        return configs.size() > first ? (configs.size() - first + n - 1) / n : 0;
+    }
+
+    RunOptions options;
+    Experiment exp;
+    Configurations configs;
+    ExperimentRunner runner;
+    std::string dir;
+    std::unique_ptr<io::FolderLock> lock;
+    std::unique_ptr<ResultsWriter> writer;
+};
+
+}  // namespace
+
+RunSummary runExperiment(const RunOptions& o) {
+    OpenedRun run(o);
     RunSummary s;
-    s.name = exp.name;
-    s.dir = o.out.empty() ? "results/" + exp.name : o.out;
-    const auto configs = exp.configurations();  // validates every configuration before anything runs
-    ExperimentRunner runner(exp, o.backend);
-    runner.probeAll(configs, o.shardK, o.shardN);  // a .brdf that does not build or runs too long: nothing written
-    checkResultFolder(s.dir, o.outName);
+    s.name = run.exp.name;
+    s.dir = run.dir;
+    const auto& configs = run.configs;
     if (o.check) {  // what the run would refuse next: a folder another run holds, rows --resume would not keep
         io::checkUnlocked(s.dir, o.outName);
-        if (o.resume) resumedRows(s.dir, exp, configs);
+        if (o.resume) resumedRows(s.dir, run.exp, configs);
         s.configurations = configs.size();
         return s;
     }
-    io::makeOutputDir(s.dir, o.outName);          // only now: bad input leaves not even an empty folder behind
-    const io::FolderLock lock(s.dir, o.outName);  // a second run or merge into this folder is refused, not mixed in
-    ResultsWriter writer(s.dir, runner.columns(), o.resume, exp, configs,
-                         o.fsyncEachRow ? 0.0 : ResultsWriter::kGroupCommitSeconds);
-    writeExperimentCopy(exp, s.dir);
+    run.open();
+    ResultsWriter& writer = *run.writer;
     // This shard's configurations only, each built when measured (10^6 held at once took 1.1 GB).
     const size_t first = size_t(o.shardK - 1), stride = size_t(o.shardN);
     size_t todo = 0;
@@ -89,7 +129,7 @@ RunSummary runExperiment(const RunOptions& o) {
     for (size_t i = first; i < configs.size(); i += stride) {
         if (writer.done().count(long(i))) continue;
         try {
-            writer.append(runner.measure(configs[i]));
+            writer.append(run.runner.measure(configs[i]));
         } catch (const InputError& e) {  // a file changed after validation: the rows written are kept, say so
             const size_t kept = writer.done().size();  // resumed and appended
             if (kept == 0) throw;
@@ -105,9 +145,106 @@ RunSummary runExperiment(const RunOptions& o) {
     s.seconds = since(t0);
     s.configurations = configs.size();
     if (o.shardN > 1) return s;
-    runner.finalize(s.dir, readRows(s.dir + "/results.jsonl"), s.seconds);
+    run.runner.finalize(s.dir, readRows(s.dir + "/results.jsonl"), s.seconds);
     s.finalized = true;
     return s;
+}
+
+struct DistributedRun::Impl {
+    explicit Impl(const RunOptions& o) : run(o) {}
+    OpenedRun run;
+    std::string path;
+    size_t appended = 0;
+    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    bool finished = false;
+};
+
+DistributedRun::DistributedRun(const RunOptions& o) : m(std::make_unique<Impl>(o)) {
+    m->path = fs::absolute(m->run.exp.path).lexically_normal().string();
+    m->run.open();
+}
+
+DistributedRun::~DistributedRun() {
+    if (!m || m->finished) return;
+    try {
+        m->run.writer->finish();  // the rows appended made durable before the lock goes
+    } catch (...) {
+    }
+}
+
+const std::string& DistributedRun::experimentPath() const { return m->path; }
+const std::string& DistributedRun::dir() const { return m->run.dir; }
+size_t DistributedRun::appended() const { return m->appended; }
+
+std::vector<size_t> DistributedRun::todo() const {
+    std::vector<size_t> out;
+    const RunOptions& o = m->run.options;
+    for (size_t i = size_t(o.shardK - 1); i < m->run.configs.size(); i += size_t(o.shardN))
+        if (!m->run.writer->done().count(long(i))) out.push_back(i);
+    return out;
+}
+
+void DistributedRun::append(const std::string& text) {
+    if (m->finished) throw InputError("run: this run has finished; no row can be added");
+    const std::string name = "a row from a worker";
+    auto rows = parseRows(text.empty() || text.back() != '\n' ? text + "\n" : text, name);
+    if (rows.size() != 1) throw InputError(name + ": expected one JSON row, got " + std::to_string(rows.size()));
+    const long index = rows[0]["config"].get<long>();
+    if (index >= 0 && size_t(index) < m->run.configs.size() && !m->run.ours(size_t(index)))
+        throw InputError(name + ": configuration " + std::to_string(index) + " is not one this run (shard " +
+                         std::to_string(m->run.options.shardK) + "/" + std::to_string(m->run.options.shardN) +
+                         ") measures");
+    checkRows(rows, name, m->run.exp, m->run.configs);  // another or an edited experiment's row is refused
+    if (m->run.writer->done().count(index))
+        throw InputError(name + ": configuration " + std::to_string(index) + " has its row already");
+    m->run.writer->append(rows[0]);
+    ++m->appended;
+}
+
+RunSummary DistributedRun::finish() {
+    if (m->finished) throw InputError("run: this run has finished already");
+    OpenedRun& run = m->run;
+    const size_t have = m->run.shardSize() - todo().size();
+    if (have < run.shardSize())
+        throw InputError("run: " + std::to_string(run.shardSize() - have) + " of " + std::to_string(run.shardSize()) +
+                         " configurations have no row yet; the " + std::to_string(have) + " written are kept in " +
+                         run.dir + " (rerun with resume)");
+    run.writer->finish();
+    m->finished = true;
+    RunSummary s;
+    s.name = run.exp.name, s.dir = run.dir, s.configurations = run.configs.size(), s.measured = m->appended;
+    s.seconds = since(m->t0);
+    // Rows arrive in the order the workers finish: written again in configuration order, as a single run's.
+    auto rows = readRows(run.dir + "/results.jsonl");
+    ResultsWriter::writeAll(run.dir, run.runner.columns(), rows);
+    if (run.options.shardN > 1) return s;
+    std::sort(rows.begin(), rows.end(),
+              [](const nlohmann::json& a, const nlohmann::json& b) { return a["config"] < b["config"]; });
+    run.runner.finalize(run.dir, rows, s.seconds);
+    s.finalized = true;
+    return s;
+}
+
+struct ConfigurationMeasurer::Impl {
+    Impl(const std::string& experiment, const std::string& backend)
+        : exp(loadExperiment(findExperiment(experiment))), configs(exp.configurations()), runner(exp, backend) {}
+    Experiment exp;
+    Configurations configs;
+    ExperimentRunner runner;
+};
+
+ConfigurationMeasurer::ConfigurationMeasurer(const std::string& experiment, const std::string& backend) {
+    if (experiment.empty()) throw InputError("run: empty experiment name (give a file, or a name in experiments/)");
+    m = std::make_unique<Impl>(experiment, backend);
+}
+ConfigurationMeasurer::~ConfigurationMeasurer() = default;
+size_t ConfigurationMeasurer::configurations() const { return m->configs.size(); }
+
+std::string ConfigurationMeasurer::measure(size_t index) {
+    if (index >= m->configs.size())
+        throw InputError("run: configuration " + std::to_string(index) + " out of range (the experiment has " +
+                         std::to_string(m->configs.size()) + ")");
+    return m->runner.measure(m->configs[index]).dump();
 }
 
 MergeSummary mergeShards(const std::vector<std::string>& shards, const std::string& out, const std::string& backend,

@@ -110,3 +110,53 @@ TEST_CASE("experiments shipped in experiments/ all validate") {
         CHECK(refusal(file, d / "x", "1/100000") == "");
     }
 }
+
+TEST_CASE("a distributed run: rows measured elsewhere, in any order, make the folder a single run makes") {
+    // What hilite.run(..., client=) does on Dask workers (python/tests/test_dask.py), here in one process.
+    Dir d;
+    std::ofstream(d / "e.toml") << "[scene.camera]\nsize = \"64\"\n[[sweep]]\nkey = \"material.model\"\n"
+                                   "values = [\"phong\", \"ggx\"]\n[[sweep]]\nkey = \"light.incidence\"\n"
+                                   "values = [0, 40, 70]\n";
+    experiments::RunOptions o;
+    o.experiment = d / "e.toml", o.out = d / "single";
+    experiments::runExperiment(o);
+    o.out = d / "spread";
+    {
+        experiments::DistributedRun run(o);
+        const std::vector<size_t> todo = run.todo();
+        REQUIRE(todo.size() == 6);
+        experiments::ConfigurationMeasurer worker(run.experimentPath());
+        CHECK(worker.configurations() == 6);
+        CHECK(oneLine(inputError([&] { worker.measure(6); })));
+        for (auto i = todo.rbegin(); i != todo.rend(); ++i) run.append(worker.measure(*i));  // last first
+        CHECK(inputError([&] { run.append(worker.measure(2)); }).find("has its row already") != std::string::npos);
+        CHECK(inputError([&] { run.append("{\"config\": 1}"); }).find("fingerprint") != std::string::npos);
+        const experiments::RunSummary s = run.finish();
+        CHECK(s.measured == 6);
+        CHECK(s.finalized);
+    }
+    auto withoutTimes = [](const fs::path& file) {
+        std::vector<nlohmann::json> rows;
+        std::ifstream in(file);
+        for (std::string line; std::getline(in, line);) {
+            auto r = nlohmann::json::parse(line);
+            for (auto it = r.begin(); it != r.end();)
+                it = it.key().size() > 3 && it.key().compare(it.key().size() - 3, 3, "_ms") == 0 ? r.erase(it)
+                                                                                                 : std::next(it);
+            rows.push_back(r);
+        }
+        return rows;
+    };
+    CHECK(withoutTimes(d / "spread/results.jsonl") == withoutTimes(d / "single/results.jsonl"));
+    CHECK(fs::exists(d / "spread/summary.md"));
+    // A shard's run takes only its own configurations; missing rows are named, the written ones kept.
+    o.out = d / "half";
+    o.shardK = 2, o.shardN = 2;
+    experiments::DistributedRun half(o);
+    CHECK(half.todo() == std::vector<size_t>{1, 3, 5});
+    experiments::ConfigurationMeasurer worker(half.experimentPath());
+    CHECK(inputError([&] { half.append(worker.measure(0)); }).find("is not one this run (shard 2/2)") !=
+          std::string::npos);
+    half.append(worker.measure(3));
+    CHECK(inputError([&] { half.finish(); }).find("2 of 3 configurations have no row yet") != std::string::npos);
+}

@@ -5,6 +5,7 @@
 // merge prove the rows already there belong to the same experiment.
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,49 @@ struct RunSummary {
 void parseShard(const std::string& text, int& k, int& n, const std::string& name = "--shard");
 /// Runs the experiment (InputError / SystemError as the CLI reports them).
 RunSummary runExperiment(const RunOptions& o);
+
+/// A run whose rows are measured elsewhere (hilite.run(..., client=) maps them over Dask workers): opened as
+/// runExperiment opens its folder (every check, every .brdf probed, the lock, --resume's rows kept), fed rows in
+/// any order, each checked (a configuration of this run not yet written, and its fingerprint), appended and made
+/// durable by group commit; finish() writes the folder a single run writes, rows in configuration order.
+class DistributedRun {
+public:
+    explicit DistributedRun(const RunOptions& o);  ///< o.check and o.progress are not used
+    ~DistributedRun();                             ///< the rows appended stay, made durable; the lock is released
+    DistributedRun(const DistributedRun&) = delete;
+    DistributedRun& operator=(const DistributedRun&) = delete;
+
+    const std::string& experimentPath() const;  ///< the experiment's file, absolute: what the workers load
+    const std::string& dir() const;             ///< the result folder
+    std::vector<size_t> todo() const;           ///< this run's configurations without a row yet, ascending
+    /// One row as ConfigurationMeasurer::measure gives it. InputError (nothing written): not a row, a
+    /// configuration this run does not measure or has written, or measured with other settings (fingerprint).
+    void append(const std::string& row);
+    size_t appended() const;  ///< rows appended by this run
+    /// Every configuration has its row: results rewritten in configuration order, plots and summary.md
+    /// written (not for a shard of several). InputError naming how many rows are missing otherwise.
+    RunSummary finish();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m;
+};
+
+/// A worker's side of a DistributedRun: the experiment loaded and checked once (every configuration), then
+/// configurations measured by index, each row exactly as `hilite run` writes it (one JSON line, no newline).
+class ConfigurationMeasurer {
+public:
+    ConfigurationMeasurer(const std::string& experiment, const std::string& backend = "");
+    ~ConfigurationMeasurer();
+    ConfigurationMeasurer(const ConfigurationMeasurer&) = delete;
+    ConfigurationMeasurer& operator=(const ConfigurationMeasurer&) = delete;
+    size_t configurations() const;
+    std::string measure(size_t index);  ///< InputError for an index out of range
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m;
+};
 
 struct MergeSummary {
     std::string dir;
