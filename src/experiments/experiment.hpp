@@ -138,7 +138,7 @@ public:
     /// Measures one configuration: one JSON row.
     nlohmann::json measure(const Configuration& c);
     /// Plots, contact sheet, strips and summary.md from the complete rows. seconds < 0: unknown (merge).
-    void finalize(const std::string& dir, const std::vector<nlohmann::json>& rows, double seconds);
+    void finalize(const std::string& dir, const Rows& rows, double seconds);
 
     /// [match]: each model's width parameter tuned so that its semi-major axis at normal incidence equals the
     /// target's; sets it in `values` and `row["matched_parameter"]`.

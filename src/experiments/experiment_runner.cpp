@@ -218,7 +218,7 @@ ImageF ExperimentRunner::photo(const scene::Values& values, int width, int heigh
                                            render::Output::Color);
 }
 
-void ExperimentRunner::finalize(const std::string& dir, const std::vector<nlohmann::json>& rows, double seconds) {
+void ExperimentRunner::finalize(const std::string& dir, const Rows& rows, double seconds) {
     writeReports(*this, dir, rows, seconds);
 }
 

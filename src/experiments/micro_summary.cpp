@@ -122,7 +122,7 @@ void slopesAndMasking(const nlohmann::json& any, std::ostringstream& md) {
 
 }  // namespace
 
-std::string microSummary(const std::vector<nlohmann::json>& rows) {
+std::string microSummary(const Rows& rows) {
     ByIncidence byIncidence;
     for (const auto& r : rows)
         if (r.value("bumps", std::string()) == "explicit" && r.contains("bump_period_px"))

@@ -37,7 +37,7 @@ void markFront(std::vector<ParetoPoint>& points) {
 
 }  // namespace
 
-std::vector<ParetoPoint> paretoPoints(const ParetoSpec& spec, const std::vector<nlohmann::json>& rows) {
+std::vector<ParetoPoint> paretoPoints(const ParetoSpec& spec, const Rows& rows) {
     std::vector<ParetoPoint> points;
     std::map<std::string, size_t> index;
     for (const auto& r : rows) {

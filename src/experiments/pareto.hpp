@@ -3,6 +3,8 @@
 // error over its rows against its mean time, the Pareto front (no other setting is both faster and more
 // accurate), a log-log plot and the summary's table.
 
+#include "experiments/rows.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -29,7 +31,7 @@ struct ParetoPoint {
 };
 
 /// One point per setting, in first-seen order (rows without the error or time columns are skipped).
-std::vector<ParetoPoint> paretoPoints(const ParetoSpec& spec, const std::vector<nlohmann::json>& rows);
+std::vector<ParetoPoint> paretoPoints(const ParetoSpec& spec, const Rows& rows);
 /// The cheapest setting whose error is at most `target`; nullptr if none.
 const ParetoPoint* cheapestReaching(const std::vector<ParetoPoint>& points, double target);
 /// dir/<spec.file>: log-log, one point type per series, the front as a line. False (and why) without gnuplot.

@@ -177,7 +177,7 @@ std::vector<double> theorySamples(const std::vector<double>& data, bool logx) {
 
 }  // namespace
 
-bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohmann::json>& rows, std::string& why) {
+bool plot(const std::string& dir, const PlotSpec& spec, const Rows& rows, std::string& why) {
     // One data block per series, in first-seen order, for gnuplot's "index"; then one per theory curve.
     // A row with flags is not drawn on its series' line (a zig-zag of horizon strips read as data): it goes to a
     // block of its own, drawn as open circles titled with the flags it carries.

@@ -4,6 +4,8 @@
 // string (which expands nothing: no backticks, no macros), and a theory curve is evaluated by hilite
 // (muparser) and handed to gnuplot as data.
 
+#include "experiments/rows.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -30,7 +32,7 @@ struct PlotSpec {
 /// Writes dir/<spec.file> from the rows (skipping rows whose y is null). A series whose line lies on an earlier
 /// one's (the same x values, y within 0.5% of the plot's height) is titled "NAME (on OTHER)". Returns false (and says why in
 /// `why`) when gnuplot is missing or fails; the data file and the script beside it are kept either way.
-bool plot(const std::string& dir, const PlotSpec& spec, const std::vector<nlohmann::json>& rows, std::string& why);
+bool plot(const std::string& dir, const PlotSpec& spec, const Rows& rows, std::string& why);
 
 /// Runs gnuplot on `commands` (written to dir/<file stem>.gp); the commands write dir/<file>.tmp, which
 /// is renamed to dir/<file> on success. False (and why) when gnuplot is missing or fails.

@@ -20,8 +20,6 @@ namespace hilite::experiments {
 
 namespace {
 
-using Rows = std::vector<nlohmann::json>;
-
 struct Report {
     std::ostringstream md;
     std::vector<std::string> notes;  ///< what could not be made, and why
@@ -284,15 +282,16 @@ void writeReports(ExperimentRunner& runner, const std::string& dir, const Rows& 
     for (const auto& s : e.sections) out.md << (s == "shape" ? shapeSection(e, rows) : microSummary(rows));
     if (e.fit) out.md << fitSection(e, rows);
     if (e.bounces) {
+        const std::vector<nlohmann::json> all = rows.materialize();  // a bounce study's handful of rows
         if (!e.bounceColoursFile.empty()) {
-            writeBounceColours(rows, dir + "/" + e.bounceColoursFile);
+            writeBounceColours(all, dir + "/" + e.bounceColoursFile);
             out.md
                 << "![colour of each bounce order](" << e.bounceColoursFile
                 << ")\n\nThe colour of each bounce "
                    "order's light (its mean Fresnel product, linear sRGB written sRGB-encoded), a row per result row: "
                    "orders 1, 2, 3 and >= 2 traced on the height field, and Kulla-Conty's F_ms.\n\n";
         }
-        out.md << bounceSection(rows);
+        out.md << bounceSection(all);
     }
     for (const auto& spec : e.pareto) {
         const auto points = paretoPoints(spec, rows);

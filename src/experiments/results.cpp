@@ -25,6 +25,31 @@ namespace {
 constexpr size_t kMaxRowBytes = 1u << 20;
 
 void addRow(std::vector<nlohmann::json>& rows, const std::string& line, const std::string& name, long lineNo) {
+    rows.push_back(parseRow(line, name, lineNo));
+}
+
+/// The results file opened for reading (nullptr when missing; a path that is not a regular file refused).
+std::shared_ptr<std::ifstream> openRows(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return nullptr;
+    requireRegularFile(path, "results");
+    auto in = std::make_shared<std::ifstream>(path, std::ios::binary);
+    if (!*in) throw InputError("results: cannot read '" + path + "'");
+    return in;
+}
+
+/// The next complete line of `in` (false at the end, and for a last line without its newline: torn).
+bool nextLine(std::ifstream& in, std::string& line, const std::string& path) {
+    if (!std::getline(in, line) || in.eof()) {
+        if (in.bad()) throw InputError("results: cannot read '" + path + "'");
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+nlohmann::json parseRow(const std::string& line, const std::string& name, long lineNo) {
     const std::string at = name + ":" + std::to_string(lineNo) + ": ";
     if (line.size() > kMaxRowBytes) throw InputError(at + "damaged row (longer than 1 MiB)");
     nlohmann::json row;
@@ -39,10 +64,8 @@ void addRow(std::vector<nlohmann::json>& rows, const std::string& line, const st
     const auto it = row.find("config");
     if (it == row.end() || !it->is_number_integer() || it->get<long long>() < 0)
         throw InputError(at + "config: damaged row: expected \"config\", a whole number >= 0");
-    rows.push_back(std::move(row));
+    return row;
 }
-
-}  // namespace
 
 std::vector<nlohmann::json> parseRows(const std::string& text, const std::string& name) {
     std::vector<nlohmann::json> rows;
@@ -59,19 +82,62 @@ std::vector<nlohmann::json> parseRows(const std::string& text, const std::string
 
 std::vector<nlohmann::json> readRows(const std::string& path) {
     std::vector<nlohmann::json> rows;
-    std::error_code ec;
-    if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return rows;
-    requireRegularFile(path, "results");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError("results: cannot read '" + path + "'");
-    std::string line;
-    long lineNo = 0;
-    while (std::getline(in, line)) {
-        if (in.eof()) break;  // the last line has no newline: torn by a kill mid-write
-        addRow(rows, line, path, ++lineNo);
-    }
-    if (in.bad()) throw InputError("results: cannot read '" + path + "'");
+    forEachRow(path, [&](nlohmann::json&& r, long) { rows.push_back(std::move(r)); });
     return rows;
+}
+
+void forEachRow(const std::string& path, const std::function<void(nlohmann::json&&, long)>& f) {
+    const auto in = openRows(path);
+    if (!in) return;
+    std::string line;
+    for (long lineNo = 1; nextLine(*in, line, path); ++lineNo) f(parseRow(line, path, lineNo), lineNo);
+}
+
+Rows Rows::file(const std::string& path) {
+    Rows r;
+    r.m_path = path;
+    forEachRow(path, [&](nlohmann::json&&, long) { ++r.m_size; });
+    return r;
+}
+
+std::vector<nlohmann::json> Rows::materialize() const { return m_vec ? *m_vec : readRows(m_path); }
+
+Rows::iterator Rows::begin() const {
+    iterator it;
+    if (m_vec) {
+        it.m_vec = m_vec;
+        return it;
+    }
+    it.m_path = m_path;
+    it.m_in = openRows(m_path);
+    it.m_end = !it.m_in;
+    it.read();
+    return it;
+}
+
+Rows::iterator Rows::end() const {
+    iterator it;
+    it.m_vec = m_vec;
+    it.m_i = m_vec ? m_vec->size() : 0;
+    return it;
+}
+
+void Rows::iterator::read() {
+    if (m_end) return;
+    std::string line;
+    if (!nextLine(*m_in, line, m_path)) {
+        m_end = true;
+        m_in.reset();
+        m_row = nullptr;
+        return;
+    }
+    m_row = parseRow(line, m_path, ++m_line);
+}
+
+Rows::iterator& Rows::iterator::operator++() {
+    if (m_vec) ++m_i;
+    else read();
+    return *this;
 }
 
 namespace {
@@ -211,31 +277,33 @@ std::string whatDiffers(const nlohmann::json& row, const Configuration& c) {
 
 void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file, const Experiment& e,
                const Configurations& configs) {
-    for (size_t i = 0; i < rows.size(); ++i) {
-        const nlohmann::json& r = rows[i];
-        const long index = r["config"].get<long>();
-        const std::string at = file + ":" + std::to_string(i + 1) + ": row " + std::to_string(i + 1) +
-                               " (configuration " + std::to_string(index) + ")";
-        if (index < 0 || size_t(index) >= configs.size())
-            throw InputError(at + ": the experiment '" + e.path + "' has only " + std::to_string(configs.size()) +
-                             " configurations: these results are of another experiment (run without --resume, or "
-                             "into another folder)");
-        const auto fp = r.find("fingerprint");
-        if (fp == r.end() || !fp->is_string())
-            throw InputError(at +
-                             ": fingerprint: the row has none (written by an older hilite): its configuration "
-                             "cannot be checked; run without --resume, or into another folder");
-        const Configuration c = configs[size_t(index)];
-        const std::string now = fingerprint(e, c);
-        if (fp->get<std::string>() == now) continue;
-        const std::string diff = whatDiffers(r, c);
+    for (size_t i = 0; i < rows.size(); ++i) checkRow(rows[i], file, long(i + 1), e, configs);
+}
+
+void checkRow(const nlohmann::json& r, const std::string& file, long lineNo, const Experiment& e,
+              const Configurations& configs) {
+    const long index = r["config"].get<long>();
+    const std::string at = file + ":" + std::to_string(lineNo) + ": row " + std::to_string(lineNo) +
+                           " (configuration " + std::to_string(index) + ")";
+    if (index < 0 || size_t(index) >= configs.size())
+        throw InputError(at + ": the experiment '" + e.path + "' has only " + std::to_string(configs.size()) +
+                         " configurations: these results are of another experiment (run without --resume, or "
+                         "into another folder)");
+    const auto fp = r.find("fingerprint");
+    if (fp == r.end() || !fp->is_string())
         throw InputError(at +
-                         (diff.empty() ? " was measured with another configuration (fingerprint " +
-                                             fp->get<std::string>() + ", the experiment now gives " + now + ")"
-                                       : diff) +
-                         ": the results are of another or an edited experiment; run without --resume, or into "
-                         "another folder");
-    }
+                         ": fingerprint: the row has none (written by an older hilite): its configuration "
+                         "cannot be checked; run without --resume, or into another folder");
+    const Configuration c = configs[size_t(index)];
+    const std::string now = fingerprint(e, c);
+    if (fp->get<std::string>() == now) return;
+    const std::string diff = whatDiffers(r, c);
+    throw InputError(at +
+                     (diff.empty() ? " was measured with another configuration (fingerprint " + fp->get<std::string>() +
+                                         ", the experiment now gives " + now + ")"
+                                   : diff) +
+                     ": the results are of another or an edited experiment; run without --resume, or into "
+                     "another folder");
 }
 
 void nameNonFinite(nlohmann::json& row) {

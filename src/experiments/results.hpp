@@ -7,11 +7,14 @@
 // a full disk mid-write) is dropped on resume. Each JSON row carries the fingerprint of the configuration it
 // measured, so --resume and merge never keep a row of another (or an edited) experiment.
 
+#include "experiments/rows.hpp"
 #include "io/image_io.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <fstream>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -27,6 +30,9 @@ struct Experiment;
 /// mid-write) is dropped; any other line that is not a JSON object with an integer "config" >= 0 is refused
 /// (InputError "<path>:<line>: ..."). Missing file: empty. A path that is not a regular file: refused.
 std::vector<nlohmann::json> readRows(const std::string& jsonlPath);
+
+/// One line of a results.jsonl as a row, checked as readRows checks it (InputError "<name>:<lineNo>: ...").
+nlohmann::json parseRow(const std::string& line, const std::string& name, long lineNo);
 
 /// The rows of `text` as readRows reads a file (`name` stands for the file in messages): what the fuzzer drives.
 std::vector<nlohmann::json> parseRows(const std::string& text, const std::string& name);
@@ -54,6 +60,9 @@ std::string fingerprint(const Experiment& e, const Configuration& c);
 /// shows it, the value that differs ("... was measured with roughness = 0.1, the experiment now says 0.2").
 void checkRows(const std::vector<nlohmann::json>& rows, const std::string& file, const Experiment& e,
                const Configurations& configs);
+/// checkRows for one row, line `lineNo` of `file`.
+void checkRow(const nlohmann::json& row, const std::string& file, long lineNo, const Experiment& e,
+              const Configurations& configs);
 
 /// The rows --resume keeps of `dir`/results.jsonl: read, checked against the experiment (checkRows) and each
 /// configuration at most once; InputError naming the file and line otherwise. Nothing is written.

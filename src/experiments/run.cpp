@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <queue>
 #include <set>
 
 namespace hilite::experiments {
@@ -145,7 +147,7 @@ RunSummary runExperiment(const RunOptions& o) {
     s.seconds = since(t0);
     s.configurations = configs.size();
     if (o.shardN > 1) return s;
-    run.runner.finalize(s.dir, readRows(s.dir + "/results.jsonl"), s.seconds);
+    run.runner.finalize(s.dir, Rows::file(s.dir + "/results.jsonl"), s.seconds);
     s.finalized = true;
     return s;
 }
@@ -215,12 +217,9 @@ RunSummary DistributedRun::finish() {
     s.name = run.exp.name, s.dir = run.dir, s.configurations = run.configs.size(), s.measured = m->appended;
     s.seconds = since(m->t0);
     // Rows arrive in the order the workers finish: written again in configuration order, as a single run's.
-    auto rows = readRows(run.dir + "/results.jsonl");
-    ResultsWriter::writeAll(run.dir, run.runner.columns(), rows);
+    ResultsWriter::writeAll(run.dir, run.runner.columns(), readRows(run.dir + "/results.jsonl"));
     if (run.options.shardN > 1) return s;
-    std::sort(rows.begin(), rows.end(),
-              [](const nlohmann::json& a, const nlohmann::json& b) { return a["config"] < b["config"]; });
-    run.runner.finalize(run.dir, rows, s.seconds);
+    run.runner.finalize(run.dir, Rows::file(run.dir + "/results.jsonl"), s.seconds);
     s.finalized = true;
     return s;
 }
@@ -247,6 +246,47 @@ std::string ConfigurationMeasurer::measure(size_t index) {
     return m->runner.measure(m->configs[index]).dump();
 }
 
+namespace {
+
+/// One shard's results.jsonl, read in configuration order: straight through when it was written in order (a
+/// run that was not resumed), else through an index of (configuration, line offset) sorted once.
+class ShardCursor {
+public:
+    ShardCursor(std::string path, bool sorted) : m_path(std::move(path)), m_in(m_path, std::ios::binary) {
+        if (!m_in) throw InputError("merge: cannot read '" + m_path + "'");
+        if (sorted) return;
+        std::string line;
+        for (std::streamoff at = m_in.tellg(); std::getline(m_in, line) && !m_in.eof(); at = m_in.tellg())
+            m_index.emplace_back(parseRow(line, m_path, long(m_index.size() + 1))["config"].get<long>(), at);
+        std::sort(m_index.begin(), m_index.end());
+        m_in.clear();
+        m_indexed = true;
+    }
+    /// The next row in configuration order; false at the end.
+    bool next(nlohmann::json& row) {
+        std::string line;
+        if (m_indexed) {
+            if (m_next == m_index.size()) return false;
+            m_in.seekg(m_index[m_next++].second);
+            std::getline(m_in, line);
+        } else if (!std::getline(m_in, line) || m_in.eof()) {
+            return false;  // the end, or a torn last line (checked before: dropped, as readRows drops it)
+        }
+        row = parseRow(line, m_path, ++m_line);
+        return true;
+    }
+
+private:
+    std::string m_path;
+    std::ifstream m_in;
+    std::vector<std::pair<long, std::streamoff>> m_index;
+    size_t m_next = 0;
+    long m_line = 0;
+    bool m_indexed = false;
+};
+
+}  // namespace
+
 MergeSummary mergeShards(const std::vector<std::string>& shards, const std::string& out, const std::string& backend,
                          const std::string& outName) {
     if (out.empty()) throw InputError(outName + ": merge needs an output folder");
@@ -256,25 +296,56 @@ MergeSummary mergeShards(const std::vector<std::string>& shards, const std::stri
             throw InputError("merge: '" + s + "' holds no experiment.toml (not a hilite run output)");
     const Experiment exp = loadExperimentCopy(shards.front());
     const auto configs = exp.configurations();
-    std::vector<nlohmann::json> rows;
-    for (const auto& s : shards) {
-        if (s != shards.front()) checkSameExperiment(shards.front(), exp, configs, s);
-        auto shardRows = readRows(s + "/results.jsonl");
-        checkRows(shardRows, s + "/results.jsonl", exp, configs);
-        for (auto& r : shardRows) rows.push_back(std::move(r));
+    // Every row checked first, streamed (one in memory at a time): nothing is written when any is refused.
+    std::vector<bool> seen(configs.size());
+    std::vector<bool> sorted(shards.size(), true);
+    size_t total = 0;
+    for (size_t k = 0; k < shards.size(); ++k) {
+        if (k) checkSameExperiment(shards.front(), exp, configs, shards[k]);
+        long last = -1;
+        const std::string file = shards[k] + "/results.jsonl";
+        forEachRow(file, [&](nlohmann::json&& r, long line) {
+            checkRow(r, file, line, exp, configs);
+            const long c = r["config"].get<long>();
+            if (seen[size_t(c)])
+                throw InputError("merge: configuration " + std::to_string(c) + " appears more than once (" + file +
+                                 ":" + std::to_string(line) + ")");
+            seen[size_t(c)] = true;
+            sorted[k] = sorted[k] && c > last;
+            last = c;
+            ++total;
+        });
     }
-    std::set<long> seen;
-    for (const auto& r : rows)
-        if (!seen.insert(r["config"].get<long>()).second)
-            throw InputError("merge: configuration " + r["config"].dump() + " appears in more than one shard");
     ExperimentRunner runner(exp, backend);  // checks the backend and [match] before anything is written
     checkResultFolder(out, outName);
     io::makeOutputDir(out, outName);
     const io::FolderLock lock(out, outName);
-    ResultsWriter::writeAll(out, runner.columns(), rows);
+    {
+        // A k-way merge of the shards in configuration order, one row of each in memory.
+        std::vector<std::unique_ptr<ShardCursor>> cursors(shards.size());  // none for a shard without rows
+        std::vector<nlohmann::json> head(shards.size());
+        using Item = std::pair<long, size_t>;  // (configuration, shard)
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+        for (size_t k = 0; k < shards.size(); ++k) {
+            if (!fs::exists(shards[k] + "/results.jsonl")) continue;
+            cursors[k] = std::make_unique<ShardCursor>(shards[k] + "/results.jsonl", sorted[k]);
+            if (cursors[k]->next(head[k])) queue.emplace(head[k]["config"].get<long>(), k);
+        }
+        io::AtomicFileWriter jsonl(out + "/results.jsonl"), csv(out + "/results.csv");
+        csv.write(csvHeaderLine(runner.columns()));
+        while (!queue.empty()) {
+            const size_t k = queue.top().second;
+            queue.pop();
+            jsonl.write(head[k].dump() + "\n");
+            csv.write(csvRowLine(runner.columns(), head[k]));
+            if (cursors[k]->next(head[k])) queue.emplace(head[k]["config"].get<long>(), k);
+        }
+        jsonl.commit();
+        csv.commit();
+    }
     writeExperimentCopy(exp, out);
-    runner.finalize(out, readRows(out + "/results.jsonl"), -1);
-    return {out, rows.size(), configs.size(), shards.size()};
+    runner.finalize(out, Rows::file(out + "/results.jsonl"), -1);
+    return {out, total, configs.size(), shards.size()};
 }
 
 }  // namespace hilite::experiments

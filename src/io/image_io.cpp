@@ -136,6 +136,42 @@ void writeFileAtomic(const std::string& path, const std::string& bytes) {
     syncDir(directoryOf(path));
 }
 
+AtomicFileWriter::AtomicFileWriter(const std::string& path)
+    : m_path(path), m_tmp(path + ".tmp" + std::to_string(getpid())) {
+    requireReplaceable(path, "output");
+    m_fd = ::open(m_tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (m_fd < 0) throw SystemError("cannot write '" + path + "': " + errnoText());
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+    if (m_fd < 0) return;
+    ::close(m_fd);
+    std::remove(m_tmp.c_str());
+}
+
+void AtomicFileWriter::write(const std::string& bytes) {
+    m_buffer += bytes;
+    if (m_buffer.size() >= (1u << 20)) flush();
+}
+
+void AtomicFileWriter::flush() {
+    writeAll(m_fd, m_buffer, m_path);
+    m_buffer.clear();
+}
+
+void AtomicFileWriter::commit() {
+    flush();
+    if (::fsync(m_fd) != 0) throw SystemError("cannot write '" + m_path + "': " + errnoText());
+    const int fd = m_fd;
+    m_fd = -1;
+    if (::close(fd) != 0 || std::rename(m_tmp.c_str(), m_path.c_str()) != 0) {
+        const std::string why = errnoText();
+        std::remove(m_tmp.c_str());
+        throw SystemError("cannot write '" + m_path + "': " + why);
+    }
+    syncDir(directoryOf(m_path));
+}
+
 DurableAppender::DurableAppender(const std::string& path) : m_path(path) {
     requireReplaceable(path, "output");
     m_fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);

@@ -40,6 +40,24 @@ void makeOutputDir(const std::string& dir, const std::string& flag);
 /// error) throws SystemError and leaves `path` as it was.
 void writeFileAtomic(const std::string& path, const std::string& bytes);
 
+/// writeFileAtomic for a file written in parts (a merge of 10^6 rows): appended to a temporary file beside
+/// `path`; commit() fsyncs it, renames it over `path` and fsyncs the folder. Destroyed uncommitted, the
+/// temporary file goes and `path` stays as it was. Failures throw SystemError naming `path`.
+class AtomicFileWriter {
+public:
+    explicit AtomicFileWriter(const std::string& path);
+    ~AtomicFileWriter();
+    AtomicFileWriter(const AtomicFileWriter&) = delete;
+    AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+    void write(const std::string& bytes);  ///< buffered; written in pieces of about 1 MiB
+    void commit();
+
+private:
+    void flush();
+    std::string m_path, m_tmp, m_buffer;
+    int m_fd = -1;
+};
+
 /// A file that grows by whole records: each append is written completely, then fsync'd, before it returns,
 /// so a record reported written survives a crash and a failure (disk full) leaves at worst one torn last
 /// record, which readers drop. Failures throw SystemError naming the file and errno's text.

@@ -160,3 +160,47 @@ TEST_CASE("a distributed run: rows measured elsewhere, in any order, make the fo
     half.append(worker.measure(3));
     CHECK(inputError([&] { half.finish(); }).find("2 of 3 configurations have no row yet") != std::string::npos);
 }
+
+TEST_CASE("merge streams the shards in configuration order, also a resumed shard out of order") {
+    Dir d;
+    std::ofstream(d / "e.toml") << "[scene.camera]\nsize = \"64\"\n[[sweep]]\nkey = \"material.model\"\n"
+                                   "values = [\"phong\", \"ggx\"]\n[[sweep]]\nkey = \"light.incidence\"\n"
+                                   "values = [0, 40, 70]\n";
+    experiments::RunOptions o;
+    o.experiment = d / "e.toml", o.out = d / "single";
+    experiments::runExperiment(o);
+    o.shardN = 2;
+    for (int k : {1, 2}) {
+        o.shardK = k, o.out = d / ("s" + std::to_string(k));
+        experiments::runExperiment(o);
+    }
+    auto lines = [](const fs::path& f) {
+        std::vector<std::string> out;
+        std::ifstream in(f);
+        for (std::string l; std::getline(in, l);) out.push_back(l);
+        return out;
+    };
+    auto withoutTimes = [&](const fs::path& f) {
+        std::vector<nlohmann::json> rows;
+        for (const auto& l : lines(f)) {
+            auto r = nlohmann::json::parse(l);
+            for (const char* k : {"render_ms", "measure_ms"}) r.erase(k);
+            rows.push_back(r);
+        }
+        return rows;
+    };
+    // Shard 1 as a resume leaves it: rows out of order, and a torn last line (dropped).
+    auto s1 = lines(d / "s1/results.jsonl");
+    REQUIRE(s1.size() == 3);
+    std::ofstream(d / "s1/results.jsonl") << s1[2] << "\n" << s1[0] << "\n" << s1[1] << "\n" << s1[0].substr(0, 30);
+    const auto m = experiments::mergeShards({d / "s1", d / "s2"}, d / "merged");
+    CHECK(m.rows == 6);
+    CHECK(withoutTimes(d / "merged/results.jsonl") == withoutTimes(d / "single/results.jsonl"));
+    CHECK(lines(d / "merged/results.csv").size() == 7);
+    // A configuration in two shards is refused before anything is written.
+    std::ofstream(d / "s1/results.jsonl") << s1[0] << "\n" << lines(d / "s2/results.jsonl")[0] << "\n";
+    const std::string why = inputError([&] { experiments::mergeShards({d / "s1", d / "s2"}, d / "dup"); });
+    CHECK(why.find("configuration 1 appears more than once") != std::string::npos);
+    CHECK(oneLine(why));
+    CHECK_FALSE(fs::exists(d / "dup"));
+}
