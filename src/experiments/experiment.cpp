@@ -864,14 +864,15 @@ Configuration Configurations::operator[](size_t index) const {
     return c;
 }
 
-Configurations Experiment::configurations() const {
+Configurations Experiment::configurations(int shardK, int shardN) const {
     const Configurations configs(*this);
+    const size_t first = size_t(std::max(1, shardK) - 1), stride = size_t(std::max(1, shardN));
     // Validate every configuration now, so a bad value fails before any row is written (the reference scene
     // must be valid too). One at a time: nothing of a resolved scene is kept.
     const auto start = std::chrono::steady_clock::now();
     auto last = start;
     bool reported = false;
-    for (size_t i = 0; i < configs.size(); ++i) {
+    for (size_t i = first; i < configs.size(); i += stride) {
         const Configuration c = configs[i];
         scene::Values all = c.values;
         all.merge(c.reference);
@@ -882,11 +883,12 @@ Configurations Experiment::configurations() const {
         else if (!bounces &&
                  scene::resolve(all).angles.size() != 1)  // a list or range of angles: one row cannot hold them
             throw InputError(all.where("incidence") + ": one angle per configuration (sweep it with [[sweep]])");
-        if ((i & 1023) == 0 || i + 1 == configs.size()) {
+        const size_t done = (i - first) / stride + 1, todo = (configs.size() - first + stride - 1) / stride;
+        if ((done & 1023) == 0 || done == todo) {
             const auto now = std::chrono::steady_clock::now();
-            if (now - last >= std::chrono::seconds(1) || (reported && i + 1 == configs.size())) {
-                std::cerr << "hilite: " << path << ": validated " << i + 1 << " of " << configs.size()
-                          << " configurations\n";
+            if (now - last >= std::chrono::seconds(1) || (reported && done == todo)) {
+                std::cerr << "hilite: " << path << ": validated " << done << " of " << todo
+                          << (stride > 1 ? " configurations of the shard\n" : " configurations\n");
                 last = now;
                 reported = true;
             }

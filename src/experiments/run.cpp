@@ -69,14 +69,14 @@ void checkOptions(const RunOptions& o) {
     if (o.experiment.empty()) throw InputError("run: empty experiment name (give a file, or a name in experiments/)");
 }
 
-/// An experiment opened for a run: loaded, every configuration validated, this shard's .brdf files probed, the
+/// An experiment opened for a run: loaded, its configurations validated (a shard's only), this shard's .brdf files probed, the
 /// output folder checked; open() then makes the folder, locks it and starts its result files. Not movable (the
 /// configurations and the runner refer to `exp`).
 struct OpenedRun {
     explicit OpenedRun(const RunOptions& o)
         : options(o),
           exp((checkOptions(o), loadExperiment(findExperiment(o.experiment)))),
-          configs(exp.configurations()),  // validates every configuration before anything runs
+          configs(exp.configurations(o.shardK, o.shardN)),  // validates this run's configurations before it runs
           runner(exp, o.backend),
           dir(o.out.empty() ? "results/" + exp.name : o.out) {
         runner.probeAll(configs, o.shardK, o.shardN);  // a .brdf that does not build or runs too long: nothing written

@@ -204,3 +204,18 @@ TEST_CASE("merge streams the shards in configuration order, also a resumed shard
     CHECK(oneLine(why));
     CHECK_FALSE(fs::exists(d / "dup"));
 }
+
+TEST_CASE("a shard validates its own configurations: a bad one elsewhere stops only the shard that holds it") {
+    // Each array task of `hilite submit` repeated the whole experiment's validation (15 s for 10^6); submit
+    // validates every configuration once before it submits.
+    Dir d;
+    std::ofstream(d / "e.toml") << "[scene.camera]\nsize = \"64\"\n[[sweep]]\nkey = \"light.incidence\"\n"
+                                   "values = [0, 60, 100]\n";
+    CHECK(refusal(d / "e.toml", d / "s1", "1/3").empty());
+    CHECK(fs::exists(d / "s1/results.jsonl"));
+    const std::string why = refusal(d / "e.toml", d / "s3", "3/3");
+    CHECK(why.find("light.incidence: must be a finite number in [0, 90] (got 100)") != std::string::npos);
+    CHECK_FALSE(fs::exists(d / "s3"));
+    CHECK_FALSE(refusal(d / "e.toml", d / "all").empty());
+    CHECK_FALSE(fs::exists(d / "all"));
+}
