@@ -1,6 +1,7 @@
 // Costs of running experiments at scale (docs/scaling.md; bench/scaling.py runs these and writes the page):
 //   --benchmark_filter=RunRows       rows of a sweep through runExperiment (written, group commit or an fsync
 //                                    per row) against the same configurations measured in process, not written
+//   --benchmark_filter=ClientAppend  rows a Dask client checks and appends (DistributedRun::append), alone
 //   --benchmark_filter=Merge         `hilite merge` of S shards x R rows (generated, fingerprints real): wall time
 //                                    and the merge process's peak resident memory (counter peak_MB: its VmHWM,
 //                                    read every 20 ms until it exits)
@@ -171,6 +172,35 @@ BENCHMARK(BM_Merge)
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);
+
+// ---- The Dask client's side: rows appended to a DistributedRun ----
+
+/// What caps a Dask run's rate: the client checks each row the workers send (parse, the configuration's
+/// fingerprint) and appends it (group commit). Measured alone, on rows made beforehand.
+void BM_ClientAppend(benchmark::State& state) {
+    const int n = int(state.range(0));
+    const fs::path dir = shards(1, n);
+    std::vector<std::string> rows;
+    {
+        std::ifstream in(dir / "shard1" / "results.jsonl");
+        for (std::string line; std::getline(in, line);) rows.push_back(line);
+    }
+    for (auto _ : state) {
+        state.PauseTiming();
+        experiments::RunOptions o;
+        o.experiment = (dir / "merge.toml").string();
+        o.out = (scratch() / "append-out").string();
+        fs::remove_all(o.out);
+        auto run = std::make_unique<experiments::DistributedRun>(o);
+        state.ResumeTiming();
+        for (const auto& r : rows) run->append(r);
+        state.PauseTiming();
+        run.reset();
+        state.ResumeTiming();
+    }
+    state.counters["rows/s"] = benchmark::Counter(double(n) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ClientAppend)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 }  // namespace
 

@@ -7,6 +7,7 @@ Every number is measured by this run on this machine:
   wall time over the difference in configurations (the process's start and the reports cancel out);
 - rows written: build/bin/hilite_bench_scale's BM_RunRows (measured only, group commit, an fsync per row);
 - merges: BM_Merge, S shards x R rows (wall time, the merge process's peak resident memory);
+- a Dask client's share of a row: BM_ClientAppend;
 - checking: `hilite run --check` of an experiment of 10^6 configurations.
 
     /usr/bin/python3 bench/scaling.py --build build             # prints the tables and rewrites docs/scaling.md
@@ -128,6 +129,8 @@ def main(argv=None):
         for m in (0, 1, 2):
             b = rows[f"BM_RunRows/400/{m}/iterations:3/real_time"]
             run[m] = b["real_time"] * unit[b["time_unit"]] / 400
+        b = bench(args.build, "ClientAppend")["BM_ClientAppend/20000/iterations:3/real_time"]
+        client_row = b["real_time"] * unit[b["time_unit"]] / 20000
         merges = []
         for pair in args.merge.split(","):
             s, r = map(int, pair.split("/"))
@@ -160,6 +163,9 @@ def main(argv=None):
               "| shards × rows | rows | wall time | per row | peak memory |", "|---|---|---|---|---|"]
     for s, r, t, mb in merges:
         lines.append(f"| {s} × {r} | {s * r:,} | {t:.1f} s | {fmt_s(t / (s * r))} | {mb:.0f} MB |")
+    lines += ["", f"A Dask client's share of a row (BM_ClientAppend: parsed, its fingerprint checked, appended with group "
+              f"commit; 20,000 rows): {fmt_s(client_row)}, at most {1 / client_row:,.0f} rows a second for the whole "
+              "cluster."]
     lines += ["", f"`hilite run --check` of an experiment of 10^6 configurations (every one resolved and "
               f"validated, nothing measured): {check:.1f} s."]
     text = "\n".join(lines) + "\n"
