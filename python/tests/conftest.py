@@ -32,6 +32,11 @@ def without_times(row):
     return row
 
 
+def rows(path):
+    """A results.jsonl's rows without their timing fields."""
+    return [without_times(json.loads(line)) for line in open(path)]
+
+
 def read_pfm(path):
     with open(path, "rb") as f:
         assert f.readline().strip() == b"PF"

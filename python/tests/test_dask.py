@@ -1,10 +1,8 @@
 """hilite.run(..., client=) on a dask.distributed LocalCluster: the rows a single run writes, row for row."""
 
-import json
-
 import pytest
 
-from conftest import is_time, without_times
+from conftest import is_time, rows
 
 distributed = pytest.importorskip("distributed", reason="Dask's python3-distributed is not installed "
                                   "(the quick start installs it)")
@@ -25,10 +23,6 @@ x = "incidence_deg"
 y = "aspect"
 series = "model"
 """
-
-
-def rows(path):
-    return [without_times(json.loads(line)) for line in open(path)]
 
 
 def csv_rows(path):  # the CSV without its timing columns

@@ -1,10 +1,8 @@
 """hilite.run writes what `hilite run` writes; resume and merge keep their proofs."""
 
-import json
-
 import pytest
 
-from conftest import cli, stub_typed_dicts, typed_dict_mismatches, without_times
+from conftest import cli, stub_typed_dicts, typed_dict_mismatches, rows
 
 EXPERIMENT = """[experiment]
 name = "tiny"
@@ -22,10 +20,6 @@ x = "incidence_deg"
 y = "aspect"
 series = "model"
 """
-
-
-def rows(path):
-    return [without_times(json.loads(line)) for line in open(path)]
 
 
 def test_run_equals_cli(hilite, tmp_path):

@@ -357,19 +357,6 @@ std::string header(const std::vector<std::string>& columns) {
 
 }  // namespace
 
-void ResultsWriter::writeAll(const std::string& dir, const std::vector<std::string>& columns,
-                             std::vector<nlohmann::json> rows) {
-    std::sort(rows.begin(), rows.end(),
-              [](const nlohmann::json& a, const nlohmann::json& b) { return a["config"] < b["config"]; });
-    std::string jsonl, csv = header(columns);
-    for (const auto& r : rows) {
-        jsonl += r.dump() + "\n";
-        csv += csvLine(columns, r);
-    }
-    io::writeFileAtomic(dir + "/results.jsonl", jsonl);
-    io::writeFileAtomic(dir + "/results.csv", csv);
-}
-
 std::vector<nlohmann::json> resumedRows(const std::string& dir, const Experiment& e, const Configurations& configs) {
     std::vector<nlohmann::json> kept = readRows(dir + "/results.jsonl");
     checkRows(kept, dir + "/results.jsonl", e, configs);  // before anything is rewritten

@@ -94,10 +94,6 @@ public:
     /// fsyncs of results.jsonl since the writer opened (what group commit saves is visible in tests).
     size_t syncs() const { return m_syncs; }
 
-    /// Writes rows (sorted by "config") to dir/results.{jsonl,csv} atomically: what `merge` produces.
-    static void writeAll(const std::string& dir, const std::vector<std::string>& columns,
-                         std::vector<nlohmann::json> rows);
-
 private:
     std::vector<std::string> m_columns;
     std::unique_ptr<io::DurableAppender> m_jsonl, m_csv;

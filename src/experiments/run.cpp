@@ -107,6 +107,69 @@ struct OpenedRun {
     std::unique_ptr<ResultsWriter> writer;
 };
 
+/// One shard's results.jsonl, read in configuration order: straight through when it was written in order (a
+/// run that was not resumed), else through an index of (configuration, line offset) sorted once.
+class ShardCursor {
+public:
+    ShardCursor(std::string path, bool sorted) : m_path(std::move(path)), m_in(m_path, std::ios::binary) {
+        if (!m_in) throw InputError("merge: cannot read '" + m_path + "'");
+        if (sorted) return;
+        std::string line;
+        for (std::streamoff at = m_in.tellg(); std::getline(m_in, line) && !m_in.eof(); at = m_in.tellg())
+            m_index.emplace_back(parseRow(line, m_path, long(m_index.size() + 1))["config"].get<long>(), at);
+        std::sort(m_index.begin(), m_index.end());
+        m_in.clear();
+        m_indexed = true;
+    }
+    /// The next row in configuration order; false at the end.
+    bool next(nlohmann::json& row) {
+        std::string line;
+        if (m_indexed) {
+            if (m_next == m_index.size()) return false;
+            m_in.seekg(m_index[m_next++].second);
+            std::getline(m_in, line);
+        } else if (!std::getline(m_in, line) || m_in.eof()) {
+            return false;  // the end, or a torn last line (checked before: dropped, as readRows drops it)
+        }
+        row = parseRow(line, m_path, ++m_line);
+        return true;
+    }
+
+private:
+    std::string m_path;
+    std::ifstream m_in;
+    std::vector<std::pair<long, std::streamoff>> m_index;
+    size_t m_next = 0;
+    long m_line = 0;
+    bool m_indexed = false;
+};
+
+/// Writes dir/results.{jsonl,csv} atomically from the (checked) rows of `files` in configuration order: a
+/// k-way merge, one row of each file in memory ((file, written in order): one out of order goes through its
+/// index). A file may be dir/results.jsonl itself: it is read to its end before the rename replaces it.
+void writeInOrder(const std::string& dir, const std::vector<std::string>& columns,
+                  const std::vector<std::pair<std::string, bool>>& files) {
+    std::vector<std::unique_ptr<ShardCursor>> cursors;
+    std::vector<nlohmann::json> head(files.size());
+    using Item = std::pair<long, size_t>;  // (configuration, file)
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (size_t k = 0; k < files.size(); ++k) {
+        cursors.push_back(std::make_unique<ShardCursor>(files[k].first, files[k].second));
+        if (cursors[k]->next(head[k])) queue.emplace(head[k]["config"].get<long>(), k);
+    }
+    io::AtomicFileWriter jsonl(dir + "/results.jsonl"), csv(dir + "/results.csv");
+    csv.write(csvHeaderLine(columns));
+    while (!queue.empty()) {
+        const size_t k = queue.top().second;
+        queue.pop();
+        jsonl.write(head[k].dump() + "\n");
+        csv.write(csvRowLine(columns, head[k]));
+        if (cursors[k]->next(head[k])) queue.emplace(head[k]["config"].get<long>(), k);
+    }
+    jsonl.commit();
+    csv.commit();
+}
+
 }  // namespace
 
 RunSummary runExperiment(const RunOptions& o) {
@@ -206,18 +269,18 @@ void DistributedRun::append(const std::string& text) {
 RunSummary DistributedRun::finish() {
     if (m->finished) throw InputError("run: this run has finished already");
     OpenedRun& run = m->run;
-    const size_t have = m->run.shardSize() - todo().size();
-    if (have < run.shardSize())
-        throw InputError("run: " + std::to_string(run.shardSize() - have) + " of " + std::to_string(run.shardSize()) +
-                         " configurations have no row yet; the " + std::to_string(have) + " written are kept in " +
-                         run.dir + " (rerun with resume)");
+    const size_t all = run.shardSize(), missing = todo().size();
+    if (missing)
+        throw InputError("run: " + std::to_string(missing) + " of " + std::to_string(all) +
+                         " configurations have no row yet; the " + std::to_string(all - missing) +
+                         " written are kept in " + run.dir + " (rerun with resume)");
     run.writer->finish();
     m->finished = true;
     RunSummary s;
     s.name = run.exp.name, s.dir = run.dir, s.configurations = run.configs.size(), s.measured = m->appended;
     s.seconds = since(m->t0);
     // Rows arrive in the order the workers finish: written again in configuration order, as a single run's.
-    ResultsWriter::writeAll(run.dir, run.runner.columns(), readRows(run.dir + "/results.jsonl"));
+    writeInOrder(run.dir, run.runner.columns(), {{run.dir + "/results.jsonl", false}});
     if (run.options.shardN > 1) return s;
     run.runner.finalize(run.dir, Rows::file(run.dir + "/results.jsonl"), s.seconds);
     s.finalized = true;
@@ -245,47 +308,6 @@ std::string ConfigurationMeasurer::measure(size_t index) {
                          std::to_string(m->configs.size()) + ")");
     return m->runner.measure(m->configs[index]).dump();
 }
-
-namespace {
-
-/// One shard's results.jsonl, read in configuration order: straight through when it was written in order (a
-/// run that was not resumed), else through an index of (configuration, line offset) sorted once.
-class ShardCursor {
-public:
-    ShardCursor(std::string path, bool sorted) : m_path(std::move(path)), m_in(m_path, std::ios::binary) {
-        if (!m_in) throw InputError("merge: cannot read '" + m_path + "'");
-        if (sorted) return;
-        std::string line;
-        for (std::streamoff at = m_in.tellg(); std::getline(m_in, line) && !m_in.eof(); at = m_in.tellg())
-            m_index.emplace_back(parseRow(line, m_path, long(m_index.size() + 1))["config"].get<long>(), at);
-        std::sort(m_index.begin(), m_index.end());
-        m_in.clear();
-        m_indexed = true;
-    }
-    /// The next row in configuration order; false at the end.
-    bool next(nlohmann::json& row) {
-        std::string line;
-        if (m_indexed) {
-            if (m_next == m_index.size()) return false;
-            m_in.seekg(m_index[m_next++].second);
-            std::getline(m_in, line);
-        } else if (!std::getline(m_in, line) || m_in.eof()) {
-            return false;  // the end, or a torn last line (checked before: dropped, as readRows drops it)
-        }
-        row = parseRow(line, m_path, ++m_line);
-        return true;
-    }
-
-private:
-    std::string m_path;
-    std::ifstream m_in;
-    std::vector<std::pair<long, std::streamoff>> m_index;
-    size_t m_next = 0;
-    long m_line = 0;
-    bool m_indexed = false;
-};
-
-}  // namespace
 
 MergeSummary mergeShards(const std::vector<std::string>& shards, const std::string& out, const std::string& backend,
                          const std::string& outName) {
@@ -320,29 +342,10 @@ MergeSummary mergeShards(const std::vector<std::string>& shards, const std::stri
     checkResultFolder(out, outName);
     io::makeOutputDir(out, outName);
     const io::FolderLock lock(out, outName);
-    {
-        // A k-way merge of the shards in configuration order, one row of each in memory.
-        std::vector<std::unique_ptr<ShardCursor>> cursors(shards.size());  // none for a shard without rows
-        std::vector<nlohmann::json> head(shards.size());
-        using Item = std::pair<long, size_t>;  // (configuration, shard)
-        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-        for (size_t k = 0; k < shards.size(); ++k) {
-            if (!fs::exists(shards[k] + "/results.jsonl")) continue;
-            cursors[k] = std::make_unique<ShardCursor>(shards[k] + "/results.jsonl", sorted[k]);
-            if (cursors[k]->next(head[k])) queue.emplace(head[k]["config"].get<long>(), k);
-        }
-        io::AtomicFileWriter jsonl(out + "/results.jsonl"), csv(out + "/results.csv");
-        csv.write(csvHeaderLine(runner.columns()));
-        while (!queue.empty()) {
-            const size_t k = queue.top().second;
-            queue.pop();
-            jsonl.write(head[k].dump() + "\n");
-            csv.write(csvRowLine(runner.columns(), head[k]));
-            if (cursors[k]->next(head[k])) queue.emplace(head[k]["config"].get<long>(), k);
-        }
-        jsonl.commit();
-        csv.commit();
-    }
+    std::vector<std::pair<std::string, bool>> files;
+    for (size_t k = 0; k < shards.size(); ++k)
+        if (fs::exists(shards[k] + "/results.jsonl")) files.emplace_back(shards[k] + "/results.jsonl", sorted[k]);
+    writeInOrder(out, runner.columns(), files);
     writeExperimentCopy(exp, out);
     runner.finalize(out, Rows::file(out + "/results.jsonl"), -1);
     return {out, total, configs.size(), shards.size()};

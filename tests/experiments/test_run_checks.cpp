@@ -22,6 +22,26 @@ struct Dir : hilite_test::TempDir {
     Dir() : TempDir("hilite-run-checks") {}
 };
 
+/// A results.jsonl's rows without their timing fields (*_ms): what two runs of one experiment share.
+std::vector<nlohmann::json> rowsWithoutTimes(const fs::path& file) {
+    std::vector<nlohmann::json> rows;
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) {
+        auto r = nlohmann::json::parse(line);
+        for (auto it = r.begin(); it != r.end();)
+            it = it.key().size() > 3 && it.key().compare(it.key().size() - 3, 3, "_ms") == 0 ? r.erase(it)
+                                                                                             : std::next(it);
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+/// The two-model, three-angle sweep the distributed-run and merge tests share.
+const char* const kSweep =
+    "[scene.camera]\nsize = \"64\"\n[[sweep]]\nkey = \"material.model\"\n"
+    "values = [\"phong\", \"ggx\"]\n[[sweep]]\nkey = \"light.incidence\"\n"
+    "values = [0, 40, 70]\n";
+
 /// The refusal of `hilite run EXPERIMENT [--shard SHARD] [--gl-backend BACKEND] -o OUT`; "" when it runs.
 std::string refusal(const std::string& experiment, const std::string& out, const std::string& shard = "",
                     const std::string& backend = "") {
@@ -114,9 +134,7 @@ TEST_CASE("experiments shipped in experiments/ all validate") {
 TEST_CASE("a distributed run: rows measured elsewhere, in any order, make the folder a single run makes") {
     // What hilite.run(..., client=) does on Dask workers (python/tests/test_dask.py), here in one process.
     Dir d;
-    std::ofstream(d / "e.toml") << "[scene.camera]\nsize = \"64\"\n[[sweep]]\nkey = \"material.model\"\n"
-                                   "values = [\"phong\", \"ggx\"]\n[[sweep]]\nkey = \"light.incidence\"\n"
-                                   "values = [0, 40, 70]\n";
+    std::ofstream(d / "e.toml") << kSweep;
     experiments::RunOptions o;
     o.experiment = d / "e.toml", o.out = d / "single";
     experiments::runExperiment(o);
@@ -135,19 +153,7 @@ TEST_CASE("a distributed run: rows measured elsewhere, in any order, make the fo
         CHECK(s.measured == 6);
         CHECK(s.finalized);
     }
-    auto withoutTimes = [](const fs::path& file) {
-        std::vector<nlohmann::json> rows;
-        std::ifstream in(file);
-        for (std::string line; std::getline(in, line);) {
-            auto r = nlohmann::json::parse(line);
-            for (auto it = r.begin(); it != r.end();)
-                it = it.key().size() > 3 && it.key().compare(it.key().size() - 3, 3, "_ms") == 0 ? r.erase(it)
-                                                                                                 : std::next(it);
-            rows.push_back(r);
-        }
-        return rows;
-    };
-    CHECK(withoutTimes(d / "spread/results.jsonl") == withoutTimes(d / "single/results.jsonl"));
+    CHECK(rowsWithoutTimes(d / "spread/results.jsonl") == rowsWithoutTimes(d / "single/results.jsonl"));
     CHECK(fs::exists(d / "spread/summary.md"));
     // A shard's run takes only its own configurations; missing rows are named, the written ones kept.
     o.out = d / "half";
@@ -163,9 +169,7 @@ TEST_CASE("a distributed run: rows measured elsewhere, in any order, make the fo
 
 TEST_CASE("merge streams the shards in configuration order, also a resumed shard out of order") {
     Dir d;
-    std::ofstream(d / "e.toml") << "[scene.camera]\nsize = \"64\"\n[[sweep]]\nkey = \"material.model\"\n"
-                                   "values = [\"phong\", \"ggx\"]\n[[sweep]]\nkey = \"light.incidence\"\n"
-                                   "values = [0, 40, 70]\n";
+    std::ofstream(d / "e.toml") << kSweep;
     experiments::RunOptions o;
     o.experiment = d / "e.toml", o.out = d / "single";
     experiments::runExperiment(o);
@@ -180,22 +184,13 @@ TEST_CASE("merge streams the shards in configuration order, also a resumed shard
         for (std::string l; std::getline(in, l);) out.push_back(l);
         return out;
     };
-    auto withoutTimes = [&](const fs::path& f) {
-        std::vector<nlohmann::json> rows;
-        for (const auto& l : lines(f)) {
-            auto r = nlohmann::json::parse(l);
-            for (const char* k : {"render_ms", "measure_ms"}) r.erase(k);
-            rows.push_back(r);
-        }
-        return rows;
-    };
     // Shard 1 as a resume leaves it: rows out of order, and a torn last line (dropped).
     auto s1 = lines(d / "s1/results.jsonl");
     REQUIRE(s1.size() == 3);
     std::ofstream(d / "s1/results.jsonl") << s1[2] << "\n" << s1[0] << "\n" << s1[1] << "\n" << s1[0].substr(0, 30);
     const auto m = experiments::mergeShards({d / "s1", d / "s2"}, d / "merged");
     CHECK(m.rows == 6);
-    CHECK(withoutTimes(d / "merged/results.jsonl") == withoutTimes(d / "single/results.jsonl"));
+    CHECK(rowsWithoutTimes(d / "merged/results.jsonl") == rowsWithoutTimes(d / "single/results.jsonl"));
     CHECK(lines(d / "merged/results.csv").size() == 7);
     // A configuration in two shards is refused before anything is written.
     std::ofstream(d / "s1/results.jsonl") << s1[0] << "\n" << lines(d / "s2/results.jsonl")[0] << "\n";
