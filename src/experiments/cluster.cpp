@@ -147,6 +147,14 @@ bool inQueue(const std::string& squeue, const std::string& id) {
     return r.status == 0 && r.out.find_first_not_of(" \n") != std::string::npos;
 }
 
+/// Whether job `id` waits on a dependency that can no longer be met (an array task failed or was cancelled, even
+/// after its shard's last row): Slurm keeps such a job pending for ever, reason DependencyNeverSatisfied.
+bool neverRuns(const std::string& squeue, const std::string& id) {
+    if (id.empty()) return false;
+    const Ran r = runProgram({squeue, "-h", "-j", id, "-o", "%r"});
+    return r.status == 0 && r.out.find("DependencyNeverSatisfied") != std::string::npos;
+}
+
 nlohmann::json readSubmitted(const std::string& dir) {
     const std::string file = dir + "/slurm/submit.json";
     std::ifstream in(file);
@@ -219,7 +227,7 @@ SubmitResult submitExperiment(const SubmitOptions& o) {
             size_t rows = 0;
             for (int k = 1; k <= before["shards"].get<int>(); ++k)
                 rows += countRows(dir + "/shards/" + std::to_string(k) + "/results.jsonl");
-            if (rows >= before["configurations"].get<size_t>())
+            if (rows >= before["configurations"].get<size_t>() && !neverRuns(squeue, merge))
                 throw InputError("--resume: merge job " + merge + " of " + o.out +
                                  " is queued or running and every shard is complete: wait for it");
             staleMerge = merge;

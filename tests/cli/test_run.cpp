@@ -363,6 +363,19 @@ TEST_CASE(
     CHECK(done.out.find("small: 8 of 8 rows in 3 shards (100%); merge: done, 8 rows") != std::string::npos);
 }
 
+TEST_CASE("cli::submit --resume after a task cancelled past its shard's last row: the stuck merge is submitted anew") {
+    // Slurm keeps the merge pending for ever behind a cancelled task even when every shard is complete (the real
+    // single-node test met it when the scancel came after the shard's last row); --resume refused it as running.
+    FakeSlurm d;
+    const std::string exe = HILITE_EXE;
+    REQUIRE(sh(exe + " run " + (d / "small.toml") + " -o " + (d / "single")) == 0);
+    REQUIRE(sh(d.path + "FAKE_SLURM_CANCEL=2 " + exe + " submit " + (d / "small.toml") + " --shards 3 -o " +
+               (d / "cluster")) == 0);
+    REQUIRE(sh(exe + " run " + (d / "small.toml") + " --shard 2/3 --resume -o " + (d / "cluster/shards/2")) == 0);
+    REQUIRE(sh(d.path + exe + " submit --resume -o " + (d / "cluster") + " --wait") == 0);
+    CHECK(comparable(readCsv(d / "cluster/results.csv")) == comparable(readCsv(d / "single/results.csv")));
+}
+
 TEST_CASE("cli::submit refuses bad input in one line, exit 2, nothing written, and --dry-run writes the scripts only") {
     FakeSlurm d;
     const std::string exe = HILITE_EXE;

@@ -84,7 +84,7 @@ for i in $(seq 60); do
   [[ $(sinfo -h -o %T 2>/dev/null) == idle ]] && break
   sleep 0.5
 done
-[[ $(sinfo -h -o %T) == idle ]] || { echo "FAIL: the node did not come up"; tail -5 "$tmp"/*.log; exit 1; }
+[[ $(sinfo -h -o %T) == idle ]] || { echo "FAIL: the node did not come up"; tail -n 5 "$tmp"/*.log; exit 1; }
 echo "single-node Slurm up: slurmctld on 127.0.0.1:$ctld_port, slurmd on :$d_port, state in $tmp"
 
 # The rows of two result folders, timing columns aside, equal?
@@ -136,5 +136,5 @@ for i in $(seq 600); do  # until the array has left the queue (the merge stays p
   sleep 0.1
 done
 "$hilite" status slow
-if "$hilite" submit --resume -o slow --wait; then :; else echo "FAIL: submit --resume --wait"; tail -3 slow/slurm/logs/*.err; exit 1; fi
+if "$hilite" submit --resume -o slow --wait; then :; else echo "FAIL: submit --resume --wait"; tail -n 3 slow/slurm/logs/*.err; exit 1; fi
 same_rows slow_single slow
