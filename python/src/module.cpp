@@ -1,10 +1,10 @@
 // hilite._hilite: the C++ half of the Python module (python/hilite/ is the other). It takes scenes as
 // lists of (parameter, text, origin) — the CLI's own spelling, which the Python half makes from keywords —
 // so every value is read and checked by scene::resolve exactly as on the command line. GL work runs on one
-// thread owned by the module (gl_worker.hpp), with the GIL released.
+// thread owned by the module (measurement/gl_worker.hpp), with the GIL released.
 
 #include "convert.hpp"
-#include "gl_worker.hpp"
+#include "measurement/gl_worker.hpp"
 
 #include "brdf/bihemispherical.hpp"
 #include "brdf/integrate.hpp"
@@ -35,8 +35,8 @@ using hilite::python::Items;
 
 namespace {
 
-python::GlWorker& worker() {
-    static python::GlWorker* w = new python::GlWorker();  // stopped by _shutdown (atexit), never destroyed
+measurement::GlWorker& worker() {
+    static measurement::GlWorker* w = new measurement::GlWorker();  // stopped by _shutdown (atexit), never destroyed
     return *w;
 }
 

@@ -4,6 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/scene_flags.hpp"
+#include "cli/scene_toml.hpp"
 #include "core/text.hpp"
 #include "gl/context.hpp"
 #include "gl/program.hpp"
@@ -24,54 +25,6 @@ struct ExplainFlags {
     SceneOptions scene;
     std::string part = "all";
 };
-
-std::string quoted(const std::string& v) {
-    std::string q = "\"";
-    for (char c : v) q += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    return q + "\"";
-}
-
-/// A value as TOML: numbers and booleans bare, lists of numbers as arrays, everything else a string.
-std::string tomlValue(const scene::Param& p, const std::string& v) {
-    if (p.kind == scene::Kind::Switch) return v;
-    if ((p.kind == scene::Kind::Number || p.kind == scene::Kind::Integer) && parseNumber(v)) return v;
-    if (p.kind == scene::Kind::Rgb) {
-        const auto parts = split(v, ',');
-        return parts.size() == 1 ? v : "[" + join(parts) + "]";
-    }
-    if (parseNumber(v)) return v;
-    return quoted(v);
-}
-
-/// The resolved values as a scene file: one table each, every key with its value or default.
-void printScene(const scene::Resolved& r, std::ostream& os) {
-    for (scene::Table t : scene::tables()) {
-        os << "[" << toString(t) << "]\n";
-        for (const scene::Param& p : scene::registry()) {
-            if (p.table != t) continue;
-            if (p.kind == scene::Kind::List) {
-                const auto& list = r.values.list(p.name);
-                if (list.empty()) {
-                    os << "# " << p.name << " = (not set: " << p.help << ")\n";
-                    continue;
-                }
-                std::vector<std::string> items;
-                for (const auto& a : list) items.push_back(quoted(a.text));
-                os << p.name << " = [" << join(items) << "]\n";
-                continue;
-            }
-            std::string v = r.values.text(p.name);
-            if (v.empty()) {
-                os << "# " << p.name << " = (not set: " << p.help << ")\n";
-                continue;
-            }
-            // A file a scene names is found beside the scene file: written absolute, the output works anywhere.
-            if (p.kind == scene::Kind::Path) v = std::filesystem::absolute(v).lexically_normal();
-            os << p.name << " = " << tomlValue(p, v) << "\n";
-        }
-        os << "\n";
-    }
-}
 
 /// The context the scene would render on: backend, device, GL_VENDOR, GL_RENDERER, GL_VERSION (a context
 /// is made, nothing is drawn); a machine without one says why.
@@ -111,6 +64,57 @@ int runExplain(const ExplainFlags& f) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string quoted(const std::string& v) {
+    std::string q = "\"";
+    for (char c : v) q += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    return q + "\"";
+}
+
+/// A value as TOML: numbers and booleans bare, lists of numbers as arrays, everything else a string.
+std::string tomlValue(const scene::Param& p, const std::string& v) {
+    if (p.kind == scene::Kind::Switch) return v;
+    if ((p.kind == scene::Kind::Number || p.kind == scene::Kind::Integer) && parseNumber(v)) return v;
+    if (p.kind == scene::Kind::Rgb) {
+        const auto parts = split(v, ',');
+        return parts.size() == 1 ? v : "[" + join(parts) + "]";
+    }
+    if (parseNumber(v)) return v;
+    return quoted(v);
+}
+
+}  // namespace
+
+void printScene(const scene::Resolved& r, std::ostream& os) {
+    for (scene::Table t : scene::tables()) {
+        os << "[" << toString(t) << "]\n";
+        for (const scene::Param& p : scene::registry()) {
+            if (p.table != t) continue;
+            if (p.kind == scene::Kind::List) {
+                const auto& list = r.values.list(p.name);
+                if (list.empty()) {
+                    os << "# " << p.name << " = (not set: " << p.help << ")\n";
+                    continue;
+                }
+                std::vector<std::string> items;
+                for (const auto& a : list) items.push_back(quoted(a.text));
+                os << p.name << " = [" << join(items) << "]\n";
+                continue;
+            }
+            std::string v = r.values.text(p.name);
+            if (v.empty()) {
+                os << "# " << p.name << " = (not set: " << p.help << ")\n";
+                continue;
+            }
+            // A file a scene names is found beside the scene file: written absolute, the output works anywhere.
+            if (p.kind == scene::Kind::Path) v = std::filesystem::absolute(v).lexically_normal();
+            os << p.name << " = " << tomlValue(p, v) << "\n";
+        }
+        os << "\n";
+    }
+}
 
 Action addExplain(CLI::App& app) {
     auto f = std::make_shared<ExplainFlags>();

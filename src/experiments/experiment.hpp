@@ -128,6 +128,10 @@ void writeExperimentCopy(const Experiment& e, const std::string& dir);
 /// The experiment a run's output folder holds (its copy, read as if from experiment.origin when present).
 Experiment loadExperimentCopy(const std::string& dir);
 
+/// The width parameter (exponent or roughness, as the model takes) of `scene`'s model whose twin's semi-major
+/// axis at normal incidence is `targetMajorDeg` at the threshold: [match]'s bisection (hilite serve's pair too).
+double matchedWidth(render::Scene scene, double targetMajorDeg, double threshold);
+
 class ExperimentRunner {
 public:
     ExperimentRunner(const Experiment& e, const std::string& backend);

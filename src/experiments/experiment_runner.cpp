@@ -86,6 +86,22 @@ void ExperimentRunner::probeAll(const Configurations& configs, int shardK, int s
     }
 }
 
+double matchedWidth(render::Scene scene, double targetMajorDeg, double threshold) {
+    scene.light.incidenceDeg = 0;
+    scene::dropEnergyTerms(scene.brdf);  // the bisection sets the width directly (scene/resolve.hpp)
+    const bool exponent = brdf::usesExponent(scene.brdf.model);
+    // Bisection in log(parameter) on the twin's half-width at normal incidence, where every isotropic
+    // lobe is round, so its angular radius is its semi-major axis.
+    double lo = std::log(exponent ? 1e-2 : 1e-4), hi = std::log(exponent ? 1e8 : 2.0);
+    for (int i = 0; i < 80; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (exponent ? scene.brdf.exponent : scene.brdf.roughness) = std::exp(mid);
+        const double w = rad2deg(measurement::twinHalfWidth(scene, threshold));
+        ((w > targetMajorDeg) == exponent ? lo : hi) = mid;
+    }
+    return std::exp(0.5 * (lo + hi));
+}
+
 void ExperimentRunner::applyMatch(scene::Values& values, nlohmann::json& row) {
     if (!m_exp.matching) return;
     scene::Resolved r = scene::resolve(values);
@@ -101,16 +117,7 @@ void ExperimentRunner::applyMatch(scene::Values& values, nlohmann::json& row) {
     const bool exponent = brdf::usesExponent(r.scene.brdf.model);
     auto it = m_matched.find(key);
     if (it == m_matched.end()) {
-        // Bisection in log(parameter) on the twin's half-width at normal incidence, where every isotropic
-        // lobe is round, so its angular radius is its semi-major axis.
-        double lo = std::log(exponent ? 1e-2 : 1e-4), hi = std::log(exponent ? 1e8 : 2.0);
-        for (int i = 0; i < 80; ++i) {
-            const double mid = 0.5 * (lo + hi);
-            (exponent ? r.scene.brdf.exponent : r.scene.brdf.roughness) = std::exp(mid);
-            const double w = rad2deg(measurement::twinHalfWidth(r.scene, r.setup.options.threshold));
-            ((w > m_targetMajorDeg) == exponent ? lo : hi) = mid;
-        }
-        it = m_matched.emplace(key, std::exp(0.5 * (lo + hi))).first;
+        it = m_matched.emplace(key, matchedWidth(r.scene, m_targetMajorDeg, r.setup.options.threshold)).first;
     }
     std::ostringstream text;
     text.precision(17);

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 
 namespace hilite::io {
 
@@ -238,7 +239,7 @@ void checkUnlocked(const std::string& dir, const std::string& flag) {
     ::close(fd);
 }
 
-void writePng(const std::string& path, const ImageF& img, const Exposure& e) {
+std::string encodePng(const ImageF& img, const Exposure& e, int compression) {
     const double scale = std::exp2(e.ev) / (e.normalizeTo > 0.0 ? e.normalizeTo : 1.0);
     std::vector<unsigned char> rgb(size_t(img.width) * size_t(img.height) * 3);
     for (int y = 0; y < img.height; ++y) {
@@ -251,9 +252,18 @@ void writePng(const std::string& path, const ImageF& img, const Exposure& e) {
             }
     }
     std::string bytes;
-    if (!stbi_write_png_to_func(&appendBytes, &bytes, img.width, img.height, 3, rgb.data(), img.width * 3))
-        throw InputError("cannot encode PNG for '" + path + "'");
-    writeFileAtomic(path, bytes);
+    static std::mutex level;  // stb's compression level is a global
+    std::lock_guard<std::mutex> lock(level);
+    stbi_write_png_compression_level = std::clamp(compression, 0, 9);
+    const int ok = stbi_write_png_to_func(&appendBytes, &bytes, img.width, img.height, 3, rgb.data(), img.width * 3);
+    stbi_write_png_compression_level = 8;
+    if (!ok)
+        throw InputError("cannot encode a " + std::to_string(img.width) + "x" + std::to_string(img.height) + " PNG");
+    return bytes;
+}
+
+void writePng(const std::string& path, const ImageF& img, const Exposure& e) {
+    writeFileAtomic(path, encodePng(img, e));
 }
 
 void writePfm(const std::string& path, const ImageF& img) {

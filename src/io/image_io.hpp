@@ -18,6 +18,9 @@ struct Exposure {
 /// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
 double srgbEncode(double linear);
 
+/// The PNG file writePng writes, as bytes; `compression` 0-9 (zlib's levels: 1 is several times faster than the
+/// default 8, for hilite serve's live views).
+std::string encodePng(const ImageF& img, const Exposure& exposure, int compression = 8);
 /// Writes channels 0..2 of `img` (flipped so row 0 is the top of the picture). Throws InputError on failure.
 void writePng(const std::string& path, const ImageF& img, const Exposure& exposure);
 /// Writes channels 0..2 as a little-endian RGB PFM ("PF", scale -1), rows bottom to top as PFM stores them.

@@ -1,8 +1,9 @@
 #pragma once
-// The module's GL thread: one measurement::Session (one GL context, made on first need) lives on one thread
-// for the life of the process, and every call that needs it runs there, one at a time, in the order the
-// calls arrive. A GL context is current on one thread (gl/context.hpp), while Python calls come from any
-// thread; the callers wait with the GIL released (module.cpp), so other Python threads keep running.
+// One GL thread: one measurement::Session (one GL context, made on first need) lives on one thread for the life
+// of its owner, and every call that needs it runs there, one at a time, in the order the calls arrive. A GL
+// context is current on one thread (gl/context.hpp), while calls come from any thread: the Python module's
+// (python/src/module.cpp: callers wait with the GIL released, so other Python threads keep running) and
+// `hilite serve`'s HTTP threads (cli/serve_cmd.cpp: one render at a time, the others queue).
 
 #include "hilite/measurement/session.hpp"
 
@@ -16,7 +17,7 @@
 #include <sstream>
 #include <thread>
 
-namespace hilite::python {
+namespace hilite::measurement {
 
 class GlWorker {
 public:
@@ -31,7 +32,8 @@ public:
         std::future<void> done = task.get_future();
         {
             std::lock_guard<std::mutex> lock(m_mutex);
-            if (m_stopped) throw std::runtime_error("hilite: the module's GL thread has stopped (interpreter exit)");
+            if (m_stopped)
+                throw std::runtime_error("hilite: the GL thread has stopped (interpreter exit or server shutdown)");
             if (!m_thread.joinable()) m_thread = std::thread([this] { loop(); });
             m_jobs.push_back(std::move(task));
         }
@@ -82,4 +84,4 @@ private:
     std::unique_ptr<measurement::Session> m_session;  ///< touched only on the GL thread
 };
 
-}  // namespace hilite::python
+}  // namespace hilite::measurement
