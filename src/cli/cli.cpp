@@ -58,6 +58,8 @@ int run(int argc, char** argv) {
     add("merge", "join the outputs of sharded runs into what a single run writes", &addMerge);
     add("submit", "run an experiment on a Slurm cluster: an array job of shards and a merge job after it", &addSubmit);
     add("status", "a submitted folder's progress: rows per shard, failed shards and their last error line", &addStatus);
+    add("serve", "the highlight explorer in the browser: a local web server over the library (loopback by default)",
+        &addServe);
     if (argc <= 1) {  // bare `hilite`: the usage, as --help prints it, where CLI11 said only "A subcommand is required"
         std::cout << app.help();
         return finishStdout(0);

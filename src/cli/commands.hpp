@@ -25,7 +25,8 @@ Action addMerge(CLI::App& app);
 Action addSubmit(CLI::App& app);  ///< cli/submit_cmd.cpp
 Action addStatus(CLI::App& app);
 Action addExplain(CLI::App& app);
-Action addFit(CLI::App& app);  ///< cli/fit_cmd.cpp
+Action addFit(CLI::App& app);    ///< cli/fit_cmd.cpp
+Action addServe(CLI::App& app);  ///< cli/serve_cmd.cpp
 /// `brdf bounces` (cli/bounces_cmd.cpp): the subcommand, added to `brdf`, and its action.
 std::pair<CLI::App*, Action> addBrdfBounces(CLI::App& brdf);
 std::pair<CLI::App*, Action> addBrdfSlice(CLI::App& brdf);
