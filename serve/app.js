@@ -253,7 +253,7 @@ function scheduleSide() {
       return out;
     };
     try {
-      const s = await api("slice", { curves: SIDES.map((side) => ({ label: side.toUpperCase(), values: material(side) })), step: 0.5 });
+      const s = await api("slice", { curves: SIDES.map((side) => ({ label: side.toUpperCase(), values: material(side) })), step: 1 });
       drawSlice(s.points);
     } catch (e) { $("status").textContent = e.message; }
     for (const side of SIDES) {

@@ -41,6 +41,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <sys/socket.h>
@@ -61,6 +62,9 @@ constexpr int kHttpThreads = 16;            ///< cpp-httplib's worker threads
 constexpr int kEllipsePoints = 72;          ///< points of the drawn ellipse
 constexpr const char* kPageDir = "serve";   ///< under the share folder
 constexpr const char* kDefaultResults = "results";
+/// cpp-httplib compresses "application/json" and "text/..." answers for a browser (brotli at its slowest
+/// quality: 100 ms for a render's 70 KB, more than the render itself); with the charset named it does not.
+constexpr const char* kJson = "application/json; charset=utf-8";
 
 struct ServeFlags {
     std::string host = "127.0.0.1";
@@ -103,16 +107,15 @@ fs::path confined(const fs::path& root, const std::string& rel, const std::strin
     return full;
 }
 
-std::string contentType(const fs::path& p) {
+/// The type a file is served as: the page's own HTML, JS and CSS run; a file of the results root never does (a
+/// PNG, JSON or bytes: no text/ type either, which cpp-httplib would compress, slowly, up to 64 MiB of it).
+std::string contentType(const fs::path& p, bool page) {
     const std::string e = p.extension().string();
-    if (e == ".html") return "text/html; charset=utf-8";
-    if (e == ".js") return "text/javascript; charset=utf-8";
-    if (e == ".css") return "text/css; charset=utf-8";
+    if (page && e == ".html") return "text/html; charset=utf-8";
+    if (page && e == ".js") return "text/javascript; charset=utf-8";
+    if (page && e == ".css") return "text/css; charset=utf-8";
     if (e == ".png") return "image/png";
-    if (e == ".svg") return "image/svg+xml";
-    if (e == ".json") return "application/json";
-    if (e == ".jsonl" || e == ".csv" || e == ".md" || e == ".toml" || e == ".txt" || e == ".log")
-        return "text/plain; charset=utf-8";
+    if (e == ".json") return kJson;
     return "application/octet-stream";
 }
 
@@ -347,31 +350,44 @@ json ellipsePoints(const json& row, const std::vector<dvec2>& uv, int w, int h) 
     return pts;
 }
 
-/// The measurement view of the measured frame (the whole frame, not the crop the measurement analysed): grey
-/// luminance and the ellipse over it.
-json measureView(measurement::Session& s, const scene::Resolved& r, const measurement::Result& res, const json& row) {
-    render::Renderer& renderer = s.rendererFor(r);
-    const int w = r.setup.width, h = r.setup.height;
-    const PinholeCamera cam =
-        measurement::measurementCamera(r.scene, res.measurement.center, res.measurement.fovDeg, w, h);
-    const ImageF img = renderer.render(r.scene, cam, render::Output::Measure);
+/// A view as rendered on the GL thread; the rest (chart coordinates, the ellipse, the PNG) is made on the request's
+/// own thread, so that one request's CPU work overlaps the next one's renders.
+struct View {
+    PinholeCamera camera;
+    ImageF image;
+};
+
+/// The measurement view of the measured frame (the whole frame, not the crop the measurement analysed).
+View renderMeasureView(measurement::Session& s, const scene::Resolved& r, const measurement::Result& res) {
+    const PinholeCamera cam = measurement::measurementCamera(r.scene, res.measurement.center, res.measurement.fovDeg,
+                                                             r.setup.width, r.setup.height);
+    return {cam, s.rendererFor(r).render(r.scene, cam, render::Output::Measure)};
+}
+
+/// The photo view (the scene's camera flags).
+View renderPhotoView(measurement::Session& s, const scene::Resolved& r) {
+    const PinholeCamera cam = scene::viewCamera(r, scene::View::Photo, r.setup.width, r.setup.height);
+    return {cam, s.rendererFor(r).render(r.scene, cam, render::Output::Color)};
+}
+
+/// The measurement view as grey luminance, the ellipse over it from the render's own (u, v) channels.
+json measureViewJson(const View& v, const json& row) {
+    const int w = v.image.width, h = v.image.height;
     ImageF grey(w, h, 1);
     std::vector<dvec2> uv(size_t(w) * size_t(h), dvec2(NAN));
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const float* p = img.pixel(x, y);
+            const float* p = v.image.pixel(x, y);
             grey.pixel(x, y)[0] = p[0];
             if (p[3] > 0) uv[size_t(y) * size_t(w) + size_t(x)] = dvec2(p[1], p[2]);
         }
     return {{"png", pngBase64(grey)}, {"width", w}, {"height", h}, {"ellipse", ellipsePoints(row, uv, w, h)}};
 }
 
-/// The photo view (the scene's camera flags), with the ellipse where the plane's exitant directions meet it.
-json photoView(measurement::Session& s, const scene::Resolved& r, const json& row) {
-    render::Renderer& renderer = s.rendererFor(r);
-    const int w = r.setup.width, h = r.setup.height;
-    const PinholeCamera cam = scene::viewCamera(r, scene::View::Photo, w, h);
-    const ImageF img = renderer.render(r.scene, cam, render::Output::Color);
+/// The photo view, the ellipse where the exitant directions from the plane to the eye meet it.
+json photoViewJson(const View& v, const scene::Resolved& r, const json& row) {
+    const int w = v.image.width, h = v.image.height;
+    const PinholeCamera& cam = v.camera;
     const MirrorChart chart = r.scene.light.chart();
     std::vector<dvec2> uv(size_t(w) * size_t(h), dvec2(NAN));
     for (int y = 0; y < h; ++y)
@@ -384,7 +400,7 @@ json photoView(measurement::Session& s, const scene::Resolved& r, const json& ro
             const dvec3 we = glm::normalize(cam.position - hit);
             uv[size_t(y) * size_t(w) + size_t(x)] = chart.coords(we);
         }
-    return {{"png", pngBase64(img)}, {"width", w}, {"height", h}, {"ellipse", ellipsePoints(row, uv, w, h)}};
+    return {{"png", pngBase64(v.image)}, {"width", w}, {"height", h}, {"ellipse", ellipsePoints(row, uv, w, h)}};
 }
 
 std::vector<std::string> resultFolders(const fs::path& root) {
@@ -435,8 +451,8 @@ httplib::Server::Handler guarded(std::function<void(const httplib::Request&, htt
                 if (!g_log) return;
                 const double ms =
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                std::fprintf(stderr, "%s %s %d %.1f ms\n", req.method.c_str(), printable(req.path).c_str(), res.status,
-                             ms);
+                std::fprintf(stderr, "%s %s %d %.1f ms\n", req.method.c_str(), printable(req.path).c_str(),
+                             res.status < 0 ? 200 : res.status, ms);
             }
         } log{req, res, t0};
         try {
@@ -458,7 +474,7 @@ httplib::Server::Handler guarded(std::function<void(const httplib::Request&, htt
 }
 
 void sendJson(httplib::Response& res, const json& j) {
-    res.set_content(j.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+    res.set_content(j.dump(-1, ' ', false, json::error_handler_t::replace), kJson);
 }
 
 fs::path findPage() {
@@ -531,14 +547,20 @@ void addRoutes(httplib::Server& http, Server& s) {
                       }
                   }
                   json out;
+                  std::optional<measurement::Result> result;
+                  std::vector<View> rendered;
                   s.onGl([&](measurement::Session& session) {
-                      const measurement::Result result = session.measureOne(r);
-                      json row = measurement::toJson(result);
-                      experiments::nameNonFinite(row);
-                      out["row"] = row;
+                      result = session.measureOne(r);
                       for (const std::string& v : views)
-                          out[v] = v == "photo" ? photoView(session, r, row) : measureView(session, r, result, row);
+                          rendered.push_back(v == "photo" ? renderPhotoView(session, r)
+                                                          : renderMeasureView(session, r, *result));
                   });
+                  json row = measurement::toJson(*result);
+                  experiments::nameNonFinite(row);
+                  out["row"] = row;
+                  for (size_t i = 0; i < views.size(); ++i)
+                      out[views[i]] =
+                          views[i] == "photo" ? photoViewJson(rendered[i], r, row) : measureViewJson(rendered[i], row);
                   sendJson(res, out);
               }));
     http.Post(
@@ -604,14 +626,14 @@ void addRoutes(httplib::Server& http, Server& s) {
     http.Get(R"(/results/(.*))", guarded([&s](const httplib::Request& req, httplib::Response& res) {
                  if (s.results.empty()) throw HttpError{404, "this server has no results root"};
                  const fs::path p = confined(s.results, req.matches[1].str(), "file");
-                 res.set_content(readFile(p), contentType(p));
+                 res.set_content(readFile(p), contentType(p, false));
              }));
     http.Get(R"(/(.*))", guarded([&s](const httplib::Request& req, httplib::Response& res) {
                  std::string rel = req.matches[1].str();
                  if (rel.empty()) rel = "index.html";
                  if (rel.rfind("api/", 0) == 0) throw HttpError{404, "no API endpoint GET /" + printable(rel)};
                  const fs::path p = confined(s.page, rel, "file");
-                 res.set_content(readFile(p), contentType(p));
+                 res.set_content(readFile(p), contentType(p, true));
              }));
 }
 
@@ -643,6 +665,17 @@ int runServe(const ServeFlags& f) {
                            : res.status == 404 ? "not found"
                                                : "request refused";
         answer(res, res.status, std::string("hilite: ") + what);
+    });
+    // Requests naming another host are refused: a web page elsewhere could otherwise reach this server through a
+    // name it points at 127.0.0.1 (DNS rebinding) and read the results root.
+    http.set_pre_routing_handler([host = f.host](const httplib::Request& req, httplib::Response& res) {
+        std::string h = req.get_header_value("Host");
+        const size_t colon = h.rfind(':');
+        if (colon != std::string::npos && h.find(']', colon) == std::string::npos) h.resize(colon);
+        if (h == host || h == "localhost" || h == "127.0.0.1" || h == "[::1]" || host == "0.0.0.0" || host == "::")
+            return httplib::Server::HandlerResponse::Unhandled;
+        answer(res, 403, "hilite: Host '" + printable(h) + "' refused (this server answers to " + host + ")");
+        return httplib::Server::HandlerResponse::Handled;
     });
     addRoutes(http, s);
     // cpp-httplib listens with a backlog of 5: under load (llvmpipe on every core) a burst of connections
