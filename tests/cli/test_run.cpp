@@ -272,7 +272,7 @@ TEST_CASE("cli::every subcommand's --help shows an example") {
     using hilite_test::hilite;
     for (const char* sub :
          {"render", "measure", "explain", "fit", "run", "merge", "brdf", "brdf albedo", "brdf fresnel",
-          "brdf normalization", "brdf strip", "brdf tabulate", "brdf bounces", "brdf slice", "brdf inspect"}) {
+          "brdf normalization", "brdf strip", "brdf tabulate", "brdf bounces", "brdf slice", "brdf inspect", "serve"}) {
         CAPTURE(sub);
         const hilite_test::Result r = hilite(std::string(sub) + " --help");
         CHECK(r.code == 0);
@@ -288,9 +288,9 @@ TEST_CASE("cli::--help has one option style (TYPE, then the default in words) wr
     for (const std::string columns : {"72", "120"}) {
         ::setenv("COLUMNS", columns.c_str(), 1);
         const size_t width = std::stoul(columns);
-        for (const std::string sub :
-             {"", "render", "measure", "explain", "fit", "run", "merge", "brdf", "brdf albedo", "brdf fresnel",
-              "brdf normalization", "brdf strip", "brdf tabulate", "brdf bounces", "brdf slice", "brdf inspect"}) {
+        for (const std::string sub : {"", "render", "measure", "explain", "fit", "run", "merge", "brdf", "brdf albedo",
+                                      "brdf fresnel", "brdf normalization", "brdf strip", "brdf tabulate",
+                                      "brdf bounces", "brdf slice", "brdf inspect", "serve"}) {
             CAPTURE(columns);
             CAPTURE(sub);
             const hilite_test::Result r = hilite(sub + " --help", true);
