@@ -308,44 +308,26 @@ std::string pngBase64(const ImageF& img) {
     return base64(io::encodePng(img, e, 1));
 }
 
-/// The measured ellipse (chart degrees) as image points, top-down pixel coordinates, found by the nearest pixel
-/// in the per-pixel chart coordinates `uv` (radians, bottom-up rows, NaN where the plane is not seen); a point
-/// farther than a few pixels from every pixel (outside the frame) is null.
-json ellipsePoints(const json& row, const std::vector<dvec2>& uv, int w, int h) {
+/// The measured ellipse (chart degrees) as points of a view, top-down pixel coordinates: each point's exitant
+/// direction we seen from the camera (the eye) is the ray -we, projected; null below the horizon or far out of
+/// the frame.
+json ellipsePoints(const json& row, const MirrorChart& chart, const PinholeCamera& cam) {
     auto num = [&](const char* k) { return row.contains(k) && row[k].is_number() ? row[k].get<double>() : NAN; };
     const double cu = num("centroid_u_deg"), cv = num("centroid_v_deg"), a = num("major_deg"), b = num("minor_deg"),
                  phi = num("orientation_deg");
     json pts = json::array();
     if (!std::isfinite(cu + cv + a + b + phi) || a <= 0) return pts;
-    // A pixel's size in the chart, from the centre's neighbours: the farthest a point may be from its pixel.
-    double pixel = 0;
-    const size_t c0 = size_t(h / 2) * size_t(w) + size_t(w / 2);
-    if (c0 + 1 < uv.size() && std::isfinite(uv[c0].x + uv[c0 + 1].x))
-        pixel = std::hypot(uv[c0 + 1].x - uv[c0].x, uv[c0 + 1].y - uv[c0].y);
     const double ca = std::cos(deg2rad(phi)), sa = std::sin(deg2rad(phi));
-    const int stride = 2;
     for (int k = 0; k < kEllipsePoints; ++k) {
         const double t = 2 * kPi * k / kEllipsePoints;
         const double x = a * std::cos(t), y = b * std::sin(t);
-        const double u = deg2rad(cu + x * ca - y * sa), v = deg2rad(cv + x * sa + y * ca);
-        double best = INFINITY;
-        int bx = -1, by = -1;
-        auto visit = [&](int px, int py) {
-            const dvec2 q = uv[size_t(py) * size_t(w) + size_t(px)];
-            const double d = (q.x - u) * (q.x - u) + (q.y - v) * (q.y - v);
-            if (d < best) best = d, bx = px, by = py;
-        };
-        for (int py = 0; py < h; py += stride)
-            for (int px = 0; px < w; px += stride) visit(px, py);
-        if (bx < 0) {
+        const dvec3 we = chart.direction(deg2rad(cu + x * ca - y * sa), deg2rad(cv + x * sa + y * ca));
+        double nx = 0, ny = 0;
+        if (we.z <= 0 || !cam.project(-we, nx, ny) || std::abs(nx) > 3 || std::abs(ny) > 3) {
             pts.push_back(nullptr);
             continue;
         }
-        const int x0 = bx, y0 = by;
-        for (int py = std::max(0, y0 - stride); py <= std::min(h - 1, y0 + stride); ++py)
-            for (int px = std::max(0, x0 - stride); px <= std::min(w - 1, x0 + stride); ++px) visit(px, py);
-        if (pixel > 0 && std::sqrt(best) > 3 * pixel) pts.push_back(nullptr);
-        else pts.push_back({bx + 0.5, h - by - 0.5});
+        pts.push_back({0.5 * (nx + 1) * cam.width, 0.5 * (1 - ny) * cam.height});
     }
     return pts;
 }
@@ -370,37 +352,24 @@ View renderPhotoView(measurement::Session& s, const scene::Resolved& r) {
     return {cam, s.rendererFor(r).render(r.scene, cam, render::Output::Color)};
 }
 
-/// The measurement view as grey luminance, the ellipse over it from the render's own (u, v) channels.
-json measureViewJson(const View& v, const json& row) {
+/// The measurement view as grey luminance, the ellipse over it.
+json measureViewJson(const View& v, const scene::Resolved& r, const json& row) {
     const int w = v.image.width, h = v.image.height;
     ImageF grey(w, h, 1);
-    std::vector<dvec2> uv(size_t(w) * size_t(h), dvec2(NAN));
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const float* p = v.image.pixel(x, y);
-            grey.pixel(x, y)[0] = p[0];
-            if (p[3] > 0) uv[size_t(y) * size_t(w) + size_t(x)] = dvec2(p[1], p[2]);
-        }
-    return {{"png", pngBase64(grey)}, {"width", w}, {"height", h}, {"ellipse", ellipsePoints(row, uv, w, h)}};
+        for (int x = 0; x < w; ++x) grey.pixel(x, y)[0] = v.image.pixel(x, y)[0];
+    return {{"png", pngBase64(grey)},
+            {"width", w},
+            {"height", h},
+            {"ellipse", ellipsePoints(row, r.scene.light.chart(), v.camera)}};
 }
 
-/// The photo view, the ellipse where the exitant directions from the plane to the eye meet it.
+/// The photo view, the ellipse over it.
 json photoViewJson(const View& v, const scene::Resolved& r, const json& row) {
-    const int w = v.image.width, h = v.image.height;
-    const PinholeCamera& cam = v.camera;
-    const MirrorChart chart = r.scene.light.chart();
-    std::vector<dvec2> uv(size_t(w) * size_t(h), dvec2(NAN));
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            // GL rows are bottom-up, the camera's pixel y up too (render::Renderer draws ray(x + 0.5, y + 0.5)).
-            const dvec3 d = cam.ray(x + 0.5, y + 0.5);
-            if (d.z >= 0) continue;
-            const double t = -cam.position.z / d.z;
-            const dvec3 hit = cam.position + t * d;
-            const dvec3 we = glm::normalize(cam.position - hit);
-            uv[size_t(y) * size_t(w) + size_t(x)] = chart.coords(we);
-        }
-    return {{"png", pngBase64(v.image)}, {"width", w}, {"height", h}, {"ellipse", ellipsePoints(row, uv, w, h)}};
+    return {{"png", pngBase64(v.image)},
+            {"width", v.image.width},
+            {"height", v.image.height},
+            {"ellipse", ellipsePoints(row, r.scene.light.chart(), v.camera)}};
 }
 
 std::vector<std::string> resultFolders(const fs::path& root) {
@@ -549,18 +518,31 @@ void addRoutes(httplib::Server& http, Server& s) {
                   json out;
                   std::optional<measurement::Result> result;
                   std::vector<View> rendered;
+                  using Clock = std::chrono::steady_clock;
+                  Clock::time_point t0, t1, t2;
                   s.onGl([&](measurement::Session& session) {
+                      t0 = Clock::now();
                       result = session.measureOne(r);
+                      t1 = Clock::now();
                       for (const std::string& v : views)
                           rendered.push_back(v == "photo" ? renderPhotoView(session, r)
                                                           : renderMeasureView(session, r, *result));
+                      t2 = Clock::now();
                   });
                   json row = measurement::toJson(*result);
                   experiments::nameNonFinite(row);
                   out["row"] = row;
                   for (size_t i = 0; i < views.size(); ++i)
-                      out[views[i]] =
-                          views[i] == "photo" ? photoViewJson(rendered[i], r, row) : measureViewJson(rendered[i], row);
+                      out[views[i]] = views[i] == "photo" ? photoViewJson(rendered[i], r, row)
+                                                          : measureViewJson(rendered[i], r, row);
+                  if (g_log) {
+                      auto ms = [](Clock::time_point a, Clock::time_point b) {
+                          return std::chrono::duration<double, std::milli>(b - a).count();
+                      };
+                      std::fprintf(stderr,
+                                   "  render: measured in %.1f ms, views rendered in %.1f ms, encoded in %.1f ms\n",
+                                   ms(t0, t1), ms(t1, t2), ms(t2, Clock::now()));
+                  }
                   sendJson(res, out);
               }));
     http.Post(

@@ -241,22 +241,34 @@ void checkUnlocked(const std::string& dir, const std::string& flag) {
 
 std::string encodePng(const ImageF& img, const Exposure& e, int compression) {
     const double scale = std::exp2(e.ev) / (e.normalizeTo > 0.0 ? e.normalizeTo : 1.0);
+    // Fast (compression <= 1): the sRGB curve from a table of 65536 steps (within one level of the exact value).
+    static const std::vector<unsigned char> table = [] {
+        std::vector<unsigned char> t(65536);
+        for (size_t i = 0; i < t.size(); ++i)
+            t[i] = (unsigned char)std::lround(srgbEncode(double(i) / 65535.0) * 255.0);
+        return t;
+    }();
+    const bool fast = compression <= 1;
     std::vector<unsigned char> rgb(size_t(img.width) * size_t(img.height) * 3);
     for (int y = 0; y < img.height; ++y) {
         const float* row = img.pixel(0, img.height - 1 - y);  // PNG rows go top to bottom
         for (int x = 0; x < img.width; ++x)
             for (int c = 0; c < 3; ++c) {
-                const double v = srgbEncode(double(row[x * img.channels + std::min(c, img.channels - 1)]) * scale);
+                const double linear = double(row[x * img.channels + std::min(c, img.channels - 1)]) * scale;
                 rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)] =
-                    (unsigned char)std::lround(v * 255.0);
+                    fast ? table[size_t(std::clamp(linear, 0.0, 1.0) * 65535.0 + 0.5)]
+                         : (unsigned char)std::lround(srgbEncode(linear) * 255.0);
             }
     }
     std::string bytes;
-    static std::mutex level;  // stb's compression level is a global
+    static std::mutex level;  // stb's compression level and filter choice are globals
     std::lock_guard<std::mutex> lock(level);
     stbi_write_png_compression_level = std::clamp(compression, 0, 9);
+    // Fast: every row filtered by "sub" instead of trying all five filters on each row.
+    stbi_write_force_png_filter = compression <= 1 ? 1 : -1;
     const int ok = stbi_write_png_to_func(&appendBytes, &bytes, img.width, img.height, 3, rgb.data(), img.width * 3);
     stbi_write_png_compression_level = 8;
+    stbi_write_force_png_filter = -1;
     if (!ok)
         throw InputError("cannot encode a " + std::to_string(img.width) + "x" + std::to_string(img.height) + " PNG");
     return bytes;

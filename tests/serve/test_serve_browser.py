@@ -64,7 +64,7 @@ def main():
                    env=env, stdout=subprocess.DEVNULL)
     opts = webdriver.ChromeOptions()
     opts.binary_location = CHROMIUM
-    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,1000",
+    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,1100",
               f"--user-data-dir={tmp}/profile"):
         opts.add_argument(a)
     driver = None
