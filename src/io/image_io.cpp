@@ -256,7 +256,7 @@ std::string encodePng(const ImageF& img, const Exposure& e, int compression) {
             for (int c = 0; c < 3; ++c) {
                 const double linear = double(row[x * img.channels + std::min(c, img.channels - 1)]) * scale;
                 rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)] =
-                    fast ? table[size_t(std::clamp(linear, 0.0, 1.0) * 65535.0 + 0.5)]
+                    fast ? table[linear > 0.0 ? size_t(std::min(linear, 1.0) * 65535.0 + 0.5) : 0]  // NaN: black
                          : (unsigned char)std::lround(srgbEncode(linear) * 255.0);
             }
     }

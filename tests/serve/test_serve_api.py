@@ -84,6 +84,9 @@ def main():
         cli = measure_cli(HILITE, values)
         check(set(row) == set(cli), f"measure: the CLI's row fields {set(row) ^ set(cli)}")
         check(abs(row["aspect"] - cli["aspect"]) <= 1e-6, f"measure: aspect {row['aspect']} vs CLI {cli['aspect']}")
+        status, text = request(base, "/api/resolve", {"values": dict(values, incidence="0:80:40")})
+        check(status == 200 and json.loads(text)["angles"] == [0, 40, 80] and json.loads(text)["effects"],
+              f"resolve: {status} {text[:200]}")
         status, text = request(base, "/api/render", {"values": values})
         r = json.loads(text) if status == 200 else {}
         check(status == 200 and r["photo"]["png"] and r["measure"]["png"] and len(r["measure"]["ellipse"]) == 72,
