@@ -39,6 +39,9 @@ def server(hilite, results=None, extra=()):
                 proc.kill()
                 proc.wait()
         shutil.rmtree(tmp, ignore_errors=True)
+        err = proc.stderr.read()
+        if "Sanitizer" in err or "runtime error:" in err:  # the sanitized build's findings in the server
+            raise AssertionError("hilite serve: " + err[-4000:])
 
 
 def request(base, path, body=None, raw=None, method=None, timeout=60):
