@@ -6,6 +6,7 @@
 #include "analysis/supersample.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
+#include "hilite/render/area_light.hpp"
 #include "measurement/blind_framing.hpp"
 #include "measurement/diagnose.hpp"
 #include "measurement/framing.hpp"
@@ -595,9 +596,12 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
     const PixelRect crop = setup.crop && aim.good && aimResolves(widths, setup, frame) ? cropOf(aim, cam) : PixelRect{};
     const double level = horizonLevel(survey, setup.options.threshold);
     m.shape = analyse(view, cam, crop, setup, m, nullptr, level);
+    m.crop = crop, m.level = level, m.inFrame = true;
     // The region reached the crop's edge: the crop was too tight, not the frame. Measure the whole frame.
-    if (!crop.empty() && m.shape.has(analysis::Flag::Clipped))
+    if (!crop.empty() && m.shape.has(analysis::Flag::Clipped)) {
         m.shape = analyse(view, cam, PixelRect{}, setup, m, nullptr, level);
+        m.crop = PixelRect{};
+    }
     diagnose(scene, setup.options.threshold, path, m.shape, &widths);  // mirror, sub-pixel lobes, float limits
     if (survey && !survey->unbounded && survey->parts.size() > 1) flagPartsOutside(scene, *survey, cam, m.shape);
     flagUnbounded(survey, m.shape);
@@ -607,11 +611,13 @@ Measurement measureWith(const ViewFn& view, Path path, const render::Scene& scen
 
 }  // namespace
 
-Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup) {
+Measurement measureGl(render::Renderer& renderer, const render::Scene& given, const MeasureSetup& setup) {
     const bool mirror = setup.options.lobe == analysis::Lobe::Mirror;
-    if (mirror) render::requireTwin(scene, "--lobe mirror");
+    if (mirror) render::requireTwin(given, "--lobe mirror");
     // No CPU twin (a .brdf file): framed from coarse renders alone, error from resolution convergence.
-    if (!render::hasTwin(scene)) return measureBlind(renderer, scene, setup);
+    if (!render::hasTwin(given)) return measureBlind(renderer, given, setup);
+    // Framed by the twin of what is drawn: an area light's rule, not its exact integral (40 -> 4 ms for the sun).
+    const render::Scene scene = given.light.twinRings > 0 ? given : render::withRuleTwin(given);
     // A peak far from the mirror direction (retroreflection): framed and measured about the peak.
     if (const auto framed = mirror ? std::nullopt : frameAboutPeak(scene, setup.options.threshold))
         return measureGl(renderer, *framed, setup);
@@ -623,7 +629,24 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, co
         Path::Gl, scene, setup);
 }
 
-Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup) {
+Measurement measureInFrame(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup,
+                           const Measurement& like) {
+    if (!like.inFrame) throw std::logic_error("measurement::measureInFrame: `like` was not measured in one frame");
+    Measurement m;
+    m.framing = "fixed";
+    const PinholeCamera cam = measurementCamera(scene, like.center, like.fovDeg, setup.width, setup.height);
+    const ViewFn view = [&](const PinholeCamera& c, dvec2 jitter, const PixelRect& crop, ImageF& img,
+                            const std::function<void()>& whileDrawing) {
+        renderer.render(scene, c, render::Output::Measure, img, jitter, crop, whileDrawing);
+    };
+    m.shape = analyse(view, cam, like.crop, setup, m, nullptr, like.level);
+    if (!like.crop.empty() && m.shape.has(analysis::Flag::Clipped))
+        m.shape = analyse(view, cam, PixelRect{}, setup, m, nullptr, like.level);
+    return finish(m, Frame{like.center, like.fovDeg});
+}
+
+Measurement measureCpu(const render::Scene& given, const MeasureSetup& setup) {
+    const render::Scene scene = given.light.twinRings > 0 ? given : render::withRuleTwin(given);
     const bool mirror = setup.options.lobe == analysis::Lobe::Mirror;
     if (const auto framed = mirror ? std::nullopt : frameAboutPeak(scene, setup.options.threshold))
         return measureCpu(*framed, setup);

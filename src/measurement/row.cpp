@@ -81,8 +81,13 @@ void errorEstimate(json& j, const Measurement& m, int width, int height) {
 /// or more changes it by 3x its error or more; per axis, so that errors along different axes do not cancel, and
 /// both parities, since a contour's error depends on where it crosses the bins (one halving of all three axes
 /// at once gave 0.8x the true error of GGX 0.1 at 20 deg, one parity per axis 0.45x of its minor axis at 10).
+/// A GL row measured in one frame about the mirror direction measures the halves in that frame (one render each,
+/// no framing: 7 -> 1.x measurements' time), and with the full table's light rule, so that the change is the table's
+/// alone; the reference, the cpu path and the measurements of several parts or about a far peak measure them anew.
 TableError tableError(render::Renderer* renderer, const scene::Resolved& r, const MeasureSetup& setup,
-                      const analysis::Shape& full) {
+                      const Measurement& measured, bool aboutMirror) {
+    const analysis::Shape& full = measured.shape;
+    const bool sameFrame = renderer && !r.reference && !setup.cpu && aboutMirror && measured.inFrame;
     double e[4] = {0, 0, 0, 0};
     for (int axis = 0; axis < 3; ++axis) {
         double worst[4] = {0, 0, 0, 0};
@@ -90,8 +95,10 @@ TableError tableError(render::Renderer* renderer, const scene::Resolved& r, cons
             render::Scene s = r.scene;
             if (r.scene.brdf.rgl) s.brdf.rgl = brdf::rgl::halfResolution(r.scene.brdf.rgl, axis, parity);
             else s.brdf.measured = brdf::merl::halfResolution(r.scene.brdf.measured, axis, parity);
-            const analysis::Shape h =
-                r.reference ? measureReference(s, setup.options).shape : measure(renderer, s, setup).shape;
+            if (s.light.area() && !r.reference) s.light.rings = render::lightRings(r.scene);
+            const analysis::Shape h = r.reference ? measureReference(s, setup.options).shape
+                                      : sameFrame ? measureInFrame(*renderer, s, setup, measured).shape
+                                                  : measure(renderer, s, setup).shape;
             const double d[4] = {full.aspect - h.aspect, full.eccentricity - h.eccentricity,
                                  full.major_deg - h.major_deg, full.minor_deg - h.minor_deg};
             for (int k = 0; k < 4; ++k) worst[k] = std::max(worst[k], std::abs(d[k]));
@@ -192,7 +199,9 @@ Result resultOf(const scene::Resolved& r, const Measurement& m, int width, int h
     // a highlight far from the mirror direction is measured about its peak
     // (the mirror lobe is measured in the mirror direction's chart, about whatever peak it has)
     if (r.setup.options.lobe == analysis::Lobe::Mirror) out.framedAbout = "mirror direction", out.peakOffsetDeg = 0;
-    else out.framedAbout = framedAbout(s, r.setup.options.threshold, out.peakOffsetDeg);
+    else  // what framed the measurement: the GL and cpu paths search the drawn rule's lobe, the reference the exact one
+        out.framedAbout = framedAbout(method == "reference" ? s : render::withRuleTwin(s), r.setup.options.threshold,
+                                      out.peakOffsetDeg);
     if (s.surface.bumps) out.micro = microFields(s, m, r.setup.options.threshold, width, height);
     return out;
 }
@@ -254,7 +263,7 @@ Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
     if (r.reference) {
         Result res = resultOf(r, measureReference(scene, setup.options), setup.width, setup.height, "reference");
         if (scene.brdf.isMeasured() && !analysis::unmeasured(res.measurement.shape))
-            res.tableError = tableError(renderer, r, setup, res.measurement.shape);
+            res.tableError = tableError(renderer, r, setup, res.measurement, res.framedAbout == "mirror direction");
         return res;
     }
     const std::string method = setup.cpu ? "cpu" : "gl";
@@ -268,13 +277,13 @@ Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
             ToleranceFields{tr.errorEstimate,      tr.predictedError, tr.met,      tr.setup,     tr.checkSetup,
                             tr.check.shape.aspect, tr.rounds,         tr.total_ms, tr.startup_ms};
         if (scene.brdf.isMeasured() && !analysis::unmeasured(res.measurement.shape))
-            res.tableError = tableError(renderer, r, tr.setup, res.measurement.shape);
+            res.tableError = tableError(renderer, r, tr.setup, res.measurement, res.framedAbout == "mirror direction");
         return res;
     }
     Result res = resultOf(r, measure(renderer, scene, setup), setup.width, setup.height, method);
     if (renderer) res.prefilter = prefilterFields(*renderer, scene, setup, res.measurement);  // --prefilter-check
     if (scene.brdf.isMeasured() && !analysis::unmeasured(res.measurement.shape))
-        res.tableError = tableError(renderer, r, setup, res.measurement.shape);
+        res.tableError = tableError(renderer, r, setup, res.measurement, res.framedAbout == "mirror direction");
     return res;
 }
 

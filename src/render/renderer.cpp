@@ -157,7 +157,8 @@ dvec3 surfaceRadiance(const Scene& s, const dvec3& lightDirection, const dvec3& 
     if (s.brdfFile) requireTwin(s, "the double-precision evaluation");  // checked first: no string per call
     if (s.light.type == LightType::Directional) return brdf::radiance(s.brdf, lightDirection, we, s.light.irradiance);
     const dvec3 p = eye - (eye.z / we.z) * we;  // where the eye's ray meets the plane
-    if (s.light.area()) return areaRadianceExact(s, p, we);
+    if (s.light.area())
+        return s.light.twinRings > 0 ? areaRadianceRule(s, p, we, s.light.twinRings) : areaRadianceExact(s, p, we);
     const dvec3 toLight = s.light.distance * lightDirection - p;  // Light::position()
     const double d2 = glm::dot(toLight, toLight);
     return brdf::radiance(s.brdf, toLight / std::sqrt(d2), we, s.light.intensity / d2);

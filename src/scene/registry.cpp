@@ -1360,6 +1360,7 @@ std::string sceneKey(const render::Scene& scene) {
     // The fields of the scene no parameter sets.
     const render::Light& l = scene.light;
     key += "rule_target=" + exactText(l.ruleTarget);
+    if (l.twinRings > 0) key += ";twin_rings=" + std::to_string(l.twinRings);
     if (l.chartCenter)
         key += ";chart_centre=" + exactText(l.chartCenter->x) + "," + exactText(l.chartCenter->y) + "," +
                exactText(l.chartCenter->z);

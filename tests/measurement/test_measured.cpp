@@ -4,6 +4,7 @@
 // came from (issue 18: "aspect within the table's stated resolution error at 0-80 deg").
 
 #include "brdf/merl.hpp"
+#include "hilite/measurement/measure_scene.hpp"
 #include "render/renderer.hpp"
 #include "support/in_process.hpp"
 #include "support/temp_dir.hpp"
@@ -97,6 +98,32 @@ TEST_CASE("measured: refused with every other material flag, --bumps and for a b
         CAPTURE(why);
         CHECK(oneLine(why));
         CHECK(why.find(c.message) != std::string::npos);
+    }
+}
+
+TEST_CASE(
+    "measured: table_error's halves are measured in the full table's frame: the same scene there is the same shape") {
+    // measureInFrame renders the measurement's own camera, crop and level: for the scene that was measured it must
+    // give back its shape bit for bit (else the halves' differences would hold a framing change, not the table's).
+    Table t;
+    measurement::Session session;
+    for (const char* angle : {"20", "60", "80"}) {
+        CAPTURE(angle);
+        const scene::Resolved r = scene::resolve(flags("--measured " + t.file + " --size 256 --incidence " + angle));
+        render::Renderer& renderer = session.rendererFor(r);
+        const measurement::Measurement m = measurement::measureGl(renderer, r.scene, r.setup);
+        if (!m.inFrame) continue;  // several parts: table_error frames each half anew
+        const measurement::Measurement again = measurement::measureInFrame(renderer, r.scene, r.setup, m);
+        CHECK(again.renders == 1);
+        CHECK(again.shape.aspect == m.shape.aspect);
+        CHECK(again.shape.major_deg == m.shape.major_deg);
+        CHECK(again.shape.minor_deg == m.shape.minor_deg);
+        CHECK(again.shape.flags == m.shape.flags);
+        // A half table in the same frame differs by its interpolation alone: a fraction of the region's size.
+        render::Scene half = r.scene;
+        half.brdf.measured = brdf::merl::halfResolution(r.scene.brdf.measured, 0, 1);
+        const measurement::Measurement h = measurement::measureInFrame(renderer, half, r.setup, m);
+        CHECK(std::abs(h.shape.minor_deg - m.shape.minor_deg) < 0.1 * m.shape.minor_deg);
     }
 }
 

@@ -24,9 +24,15 @@ using scene::MeasureSetup;
 
 struct Measurement {
     analysis::Shape shape;
-    int renders = 0;          ///< GL renders it took (aiming + final)
-    double fovDeg = 0;        ///< field of view of the final render
-    dvec3 center{0, 0, 1};    ///< exitant direction at the centre of the final frame
+    int renders = 0;        ///< GL renders it took (aiming + final)
+    double fovDeg = 0;      ///< field of view of the final render
+    dvec3 center{0, 0, 1};  ///< exitant direction at the centre of the final frame
+    /// The final render's crop of that frame (empty: the whole frame) and the region's level there (0: the
+    /// threshold times the frame's own peak), when one frame of one part was measured (inFrame true): what
+    /// measureInFrame needs to measure another material in the same pixels.
+    PixelRect crop;
+    double level = 0;
+    bool inFrame = false;
     double render_ms = 0;     ///< GL draw + readback (or the CPU twin's render), all renders
     double measure_ms = 0;    ///< analysis of the final render (and framing arithmetic)
     long shadedPixels = 0;    ///< pixels of the final frame drawn per sample (the crop, or the whole frame)
@@ -74,6 +80,11 @@ double twinHalfWidth(const render::Scene& scene, double threshold);
 /// Measures the highlight in GL with fixed or automatic framing. A .brdf scene has no twin to seed the
 /// framing: it is measured by measureBlind (measurement/blind_framing.hpp).
 Measurement measureGl(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup);
+/// The scene measured in GL in the frame `like` was (its camera, crop and level; like.inFrame must hold): one
+/// render and its analysis, no framing and no diagnoses. For a variant of the same material whose region
+/// differs from like's by a fraction of its size (table_error's half-resolution tables, measurement/row.cpp).
+Measurement measureInFrame(render::Renderer& renderer, const render::Scene& scene, const MeasureSetup& setup,
+                           const Measurement& like);
 /// The same measurement with every render made by the CPU double twin (render/cpu_view.hpp).
 Measurement measureCpu(const render::Scene& scene, const MeasureSetup& setup);
 /// measureCpu when setup.cpu, else measureGl (`renderer` may be null for the CPU path).

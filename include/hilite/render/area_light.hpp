@@ -83,6 +83,11 @@ struct RuleCheck {
 /// else the cheapest of kRingLadder whose error is within light.ruleTarget (kMaxRings if none is), with that
 /// error. Kept per thread for the last scene (every draw asks).
 RuleCheck lightRule(const Scene& s);
-inline int lightRings(const Scene& s) { return lightRule(s).rings; }
+inline int lightRings(const Scene& s) { return s.light.rings > 0 ? s.light.rings : lightRule(s).rings; }
+
+/// The scene whose CPU twin integrates a sphere or disk light by the GL rule it is drawn with (light.twinRings =
+/// lightRings): for the framing searches of a GL or CPU measurement, thousands of twin evaluations, each 4n^2
+/// BRDF evaluations instead of the exact integral's 80-80,000. The scene itself for any other light.
+Scene withRuleTwin(const Scene& s);
 
 }  // namespace hilite::render

@@ -48,6 +48,10 @@ struct Light {
     /// sphere, disk with rings 0: the largest radiance error of the rule, relative to the lobe's peak, that
     /// the automatic choice accepts (set from --tolerance when one is given).
     double ruleTarget = 1e-3;
+    /// sphere, disk: how the CPU twin integrates the cap. 0: exactly (render::areaRadianceExact), as the reference
+    /// does; n > 0: the GL rule's n rings in double (render::areaRadianceRule), which the GL and CPU paths' framing
+    /// searches use (render::withRuleTwin): the lobe that is drawn, at 4n^2 evaluations instead of 80-80,000.
+    int twinRings = 0;
     /// The measurement chart's centre when it is not the mirror direction (a highlight framed about a peak far
     /// from it, e.g. retroreflection: measurement/peak_frame.hpp). Unset: the mirror direction.
     std::optional<dvec3> chartCenter;
