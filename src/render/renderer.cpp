@@ -209,7 +209,7 @@ Renderer::~Renderer() {
     m_programs.clear();
     m_fbos.clear();
     m_bumpTextures.reset();
-    for (auto& t : m_measuredTextures) glDeleteTextures(1, &t.second);
+    for (auto& t : m_measuredTextures) glDeleteTextures(1, &t.rgb), glDeleteTextures(1, &t.y);
     for (auto& t : m_rglTextures) glDeleteTextures(1, &t.texture), glDeleteBuffers(1, &t.buffer);
     if (m_vao) glDeleteVertexArrays(1, &m_vao);
 }
@@ -337,21 +337,60 @@ void Renderer::drawWith(const gl::Program& prog, const Scene& scene, const Pinho
 
 void Renderer::bindMeasured(const gl::Program& prog, const std::shared_ptr<const brdf::merl::MeasuredBrdf>& table) {
     namespace merl = brdf::merl;
-    // Unit 7: past the bump fields' 0-5 (render/bumps.cpp); a measured scene has no bumps (scene/resolve.cpp).
-    constexpr int kUnit = 7;
-    unsigned int tex = 0;
-    // A table freed since (brdf::merl::load keeps only the recent ones) takes its texture with it: 17.5 MB each.
+    // Units 7 and 9: past the bump fields' 0-5 (render/bumps.cpp) and RGL's 8; a measured scene has no bumps
+    // (scene/resolve.cpp).
+    constexpr int kUnit = 7, kUnitY = 9;
+    // A table freed since (brdf::merl::load keeps only the recent ones) takes its textures with it (17.5 MB of
+    // RGB texels for colour renders, 23 MB of luminance quads for measurements).
     m_measuredTextures.erase(std::remove_if(m_measuredTextures.begin(), m_measuredTextures.end(),
-                                            [](const auto& t) {
-                                                if (!t.first.expired()) return false;
-                                                glDeleteTextures(1, &t.second);
+                                            [](const MeasuredTexture& t) {
+                                                if (!t.table.expired()) return false;
+                                                if (t.rgb) glDeleteTextures(1, &t.rgb);
+                                                if (t.y) glDeleteTextures(1, &t.y);
                                                 return true;
                                             }),
                              m_measuredTextures.end());
-    for (const auto& t : m_measuredTextures)
-        if (t.first.lock() == table) tex = t.second;
-    glActiveTexture(GL_TEXTURE0 + kUnit);
-    if (!tex) {
+    auto upload = [](unsigned int& name, GLenum format, GLenum layout, const std::vector<float>& texels) {
+        glGenTextures(1, &name);
+        glBindTexture(GL_TEXTURE_3D, name);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexImage3D(GL_TEXTURE_3D, 0, GLint(format), merl::kPhiDBins, merl::kThetaDBins, merl::kThetaHBins, 0, layout,
+                     GL_FLOAT, texels.data());
+        // texelFetch reads texels exactly; NEAREST and no mipmaps make the texture complete.
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
+        HILITE_GL_CHECK_WHAT("uploading a measured table");
+    };
+    auto it = std::find_if(m_measuredTextures.begin(), m_measuredTextures.end(),
+                           [&](const MeasuredTexture& t) { return t.table.lock() == table; });
+    if (it == m_measuredTextures.end()) it = m_measuredTextures.insert(it, MeasuredTexture{table, 0, 0});
+    MeasuredTexture& held = *it;
+    // Made when a program first asks: a measurement's the luminance quads, a colour render's the RGB texels.
+    const bool measure = prog.uniform("uMeasuredY") >= 0;
+    if (measure && !held.y) {
+        // Per theta_h bin, the luminance at (phi_d, theta_d) and its neighbours at phi_d + 1 (wrapped) and
+        // theta_d + 1 (clamped), -1 where a channel has no data: a lookup's 16 taps in 4 texels.
+        std::vector<float> y(merl::kEntries);
+        for (std::size_t i = 0; i < merl::kEntries; ++i)
+            y[i] = table->hasData(i) ? float(brdf::luminance(table->bin(i))) : -1.0f;
+        std::vector<float> quads(4 * merl::kEntries);
+        for (int h = 0; h < merl::kThetaHBins; ++h)
+            for (int d = 0; d < merl::kThetaDBins; ++d)
+                for (int p = 0; p < merl::kPhiDBins; ++p) {
+                    auto at = [&](int pp, int dd) {
+                        return y[(std::size_t(h) * merl::kThetaDBins + std::size_t(dd)) * merl::kPhiDBins +
+                                 std::size_t(pp)];
+                    };
+                    const int p1 = (p + 1) % merl::kPhiDBins, d1 = std::min(d + 1, merl::kThetaDBins - 1);
+                    float* q = &quads[4 * ((std::size_t(h) * merl::kThetaDBins + std::size_t(d)) * merl::kPhiDBins +
+                                           std::size_t(p))];
+                    q[0] = at(p, d), q[1] = at(p1, d), q[2] = at(p, d1), q[3] = at(p1, d1);
+                }
+        glActiveTexture(GL_TEXTURE0 + kUnitY);
+        upload(held.y, GL_RGBA32F, GL_RGBA, quads);
+    }
+    if (!measure && !held.rgb) {
         // f = entry x scale per channel, texels in the file's order (phi_d fastest, then theta_d, theta_h);
         // no data stays negative for the shader to skip.
         std::vector<float> texels(3 * merl::kEntries);
@@ -360,20 +399,18 @@ void Renderer::bindMeasured(const gl::Program& prog, const std::shared_ptr<const
                 const double e = table->entry(c, i);
                 texels[3 * i + std::size_t(c)] = e < 0 ? -1.0f : float(e * merl::kScale[c]);
             }
-        glGenTextures(1, &tex);
-        glBindTexture(GL_TEXTURE_3D, tex);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, merl::kPhiDBins, merl::kThetaDBins, merl::kThetaHBins, 0, GL_RGB,
-                     GL_FLOAT, texels.data());
-        // texelFetch reads texels exactly; NEAREST and no mipmaps make the texture complete.
-        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
-        HILITE_GL_CHECK_WHAT("uploading a measured table");
-        m_measuredTextures.emplace_back(table, tex);
+        glActiveTexture(GL_TEXTURE0 + kUnit);
+        upload(held.rgb, GL_RGB32F, GL_RGB, texels);
     }
-    glBindTexture(GL_TEXTURE_3D, tex);
-    if (const int loc = prog.uniform("uMeasured"); loc >= 0) glUniform1i(loc, kUnit);
+    if (measure) {
+        glActiveTexture(GL_TEXTURE0 + kUnitY);
+        glBindTexture(GL_TEXTURE_3D, held.y);
+        glUniform1i(prog.uniform("uMeasuredY"), kUnitY);
+    } else {
+        glActiveTexture(GL_TEXTURE0 + kUnit);
+        glBindTexture(GL_TEXTURE_3D, held.rgb);
+        if (const int loc = prog.uniform("uMeasured"); loc >= 0) glUniform1i(loc, kUnit);
+    }
     glActiveTexture(GL_TEXTURE0);
 }
 

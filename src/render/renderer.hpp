@@ -87,7 +87,12 @@ private:
     /// Measured tables uploaded as 3D textures (shaders/brdf_gl.glsl, block Measured), one per table read; the
     /// shared_ptr keeps the table's address from being reused by another while its texture lives.
     /// Measured tables' textures by table, weakly: a table nobody holds any more has its texture deleted.
-    std::vector<std::pair<std::weak_ptr<const brdf::merl::MeasuredBrdf>, unsigned int>> m_measuredTextures;
+    /// Each has two: f per channel (RGB32F, colour renders) and its luminance (R32F, measurements: one texel per tap).
+    struct MeasuredTexture {
+        std::weak_ptr<const brdf::merl::MeasuredBrdf> table;
+        unsigned int rgb = 0, y = 0;
+    };
+    std::vector<MeasuredTexture> m_measuredTextures;
     void bindMeasured(const gl::Program& prog, const std::shared_ptr<const brdf::merl::MeasuredBrdf>& table);
     /// RGL materials as texture buffers (block Rgl), by material, weakly as the MERL tables: {buffer, texture}.
     struct RglTexture {
