@@ -23,22 +23,6 @@ Items items(const scene::Values& values) {
     return out;
 }
 
-const char* kindName(scene::Kind k) {
-    switch (k) {
-        case scene::Kind::Number: return "number";
-        case scene::Kind::Integer: return "integer";
-        case scene::Kind::Choice: return "choice";
-        case scene::Kind::Rgb: return "rgb";
-        case scene::Kind::Switch: return "switch";
-        case scene::Kind::Path: return "path";
-        case scene::Kind::Angles: return "angles";
-        case scene::Kind::Size: return "size";
-        case scene::Kind::List: return "list";
-        case scene::Kind::Text: return "text";
-    }
-    return "";
-}
-
 py::object toPython(const nlohmann::json& j) {
     switch (j.type()) {
         case nlohmann::json::value_t::null: return py::none();

@@ -25,7 +25,6 @@ using Items = std::vector<Item>;
 scene::Values values(const Items& items);
 /// The items of values (a scene file read), in registry order, lists in their order.
 Items items(const scene::Values& values);
-const char* kindName(scene::Kind k);
 
 pybind11::object toPython(const nlohmann::json& j);
 

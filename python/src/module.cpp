@@ -446,7 +446,7 @@ py::list registryList() {
         py::dict d;
         d["name"] = p.name;
         d["table"] = scene::toString(p.table);
-        d["kind"] = python::kindName(p.kind);
+        d["kind"] = scene::kindName(p.kind);
         d["default"] = p.def;
         d["lo"] = p.lo, d["hi"] = p.hi, d["open_lo"] = p.openLo, d["open_hi"] = p.openHi;
         d["choices"] = p.choices;

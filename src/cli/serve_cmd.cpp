@@ -130,28 +130,12 @@ std::string readFile(const fs::path& p) {
     return s.str();
 }
 
-const char* kindName(scene::Kind k) {
-    switch (k) {
-        case scene::Kind::Number: return "number";
-        case scene::Kind::Integer: return "integer";
-        case scene::Kind::Choice: return "choice";
-        case scene::Kind::Rgb: return "rgb";
-        case scene::Kind::Switch: return "switch";
-        case scene::Kind::Path: return "path";
-        case scene::Kind::Angles: return "angles";
-        case scene::Kind::Size: return "size";
-        case scene::Kind::List: return "list";
-        case scene::Kind::Text: return "text";
-    }
-    return "text";
-}
-
 json registryJson() {
     json out = json::array();
     for (const scene::Param& p : scene::registry())
         out.push_back({{"name", p.name},
                        {"table", scene::toString(p.table)},
-                       {"kind", kindName(p.kind)},
+                       {"kind", scene::kindName(p.kind)},
                        {"default", p.def},
                        {"lo", p.lo},
                        {"hi", p.hi},

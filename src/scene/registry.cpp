@@ -1351,6 +1351,22 @@ std::vector<std::string> columns() {
     return out;
 }
 
+const char* kindName(Kind k) {
+    switch (k) {
+        case Kind::Number: return "number";
+        case Kind::Integer: return "integer";
+        case Kind::Choice: return "choice";
+        case Kind::Rgb: return "rgb";
+        case Kind::Switch: return "switch";
+        case Kind::Path: return "path";
+        case Kind::Angles: return "angles";
+        case Kind::Size: return "size";
+        case Kind::List: return "list";
+        case Kind::Text: return "text";
+    }
+    return "text";
+}
+
 std::string sceneKey(const render::Scene& scene) {
     Resolved r;
     r.scene = scene;

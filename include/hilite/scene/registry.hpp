@@ -186,6 +186,10 @@ std::vector<std::string> names(Table t);
 /// Every row column the registry fills, in order.
 std::vector<std::string> columns();
 
+/// A kind's name as the registry's JSON gives it to hilite serve's page and Python's hilite.PARAMS: "number",
+/// "integer", "choice", "rgb", "switch", "path", "angles", "size", "list" or "text".
+const char* kindName(Kind k);
+
 /// The values of every registry field of `scene` (each parameter's read() in full precision) and of the fields
 /// no parameter sets (a chart centre, the light rule's target, the spectrum, the bump tile): the key of a
 /// cache of anything computed from the scene, so a parameter added to the registry enters every key.
