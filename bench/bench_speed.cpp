@@ -9,6 +9,7 @@
 #include "brdf/merl.hpp"
 #include "hilite/measurement/measure_scene.hpp"
 #include "hilite/measurement/session.hpp"
+#include "hilite/render/ltc.hpp"
 #include "hilite/scene/resolve.hpp"
 
 #include <benchmark/benchmark.h>
@@ -68,13 +69,31 @@ void timeRows(benchmark::State& state, scene::Values v, const std::string& label
     state.SetLabel(label + (fresh ? ", fresh" : ", warm"));
 }
 
-/// Arg 0: 0 directional, 1 the sun's disk (0.266 deg, auto rule); arg 1: warm or fresh.
+/// Arg 0: 0 directional, 1 the sun's disk (0.266 deg, auto rule), 2 the sun's disk by linearly transformed
+/// cosines (light_rule ltc; its fit is cached per process, timed by BM_LtcFit); arg 1: warm or fresh.
 void BM_LightRow(benchmark::State& state) {
     scene::Values v = values({{"model", "ggx"}, {"roughness", "0.02"}, {"geometry", "smith"}, {"size", "512"}});
     if (state.range(0)) v.set("light", "disk");
-    timeRows(state, v, state.range(0) ? "GGX 0.02 + Smith, sun disk" : "GGX 0.02 + Smith, directional");
+    if (state.range(0) == 2) v.set("light_rule", "ltc");
+    timeRows(state, v,
+             state.range(0) == 2 ? "GGX 0.02 + Smith, sun disk by LTC"
+             : state.range(0)    ? "GGX 0.02 + Smith, sun disk"
+                                 : "GGX 0.02 + Smith, directional");
 }
-BENCHMARK(BM_LightRow)->ArgsProduct({{0, 1}, {1, 0}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LightRow)->ArgsProduct({{0, 1, 2}, {1, 0}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The LTC fit of one BRDF (32 elevations), uncached: arg 0: GGX alpha x 1000.
+void BM_LtcFit(benchmark::State& state) {
+    brdf::Params p;
+    p.model = brdf::Model::GGX;
+    p.roughness = double(state.range(0)) / 1000;
+    p.geometry = brdf::Geometry::Smith;
+    int evaluations = 0;
+    for (auto _ : state) evaluations = render::ltcFit(p).objectiveEvaluations;
+    state.counters["objective_evaluations"] = evaluations;
+    state.SetLabel("GGX " + std::to_string(p.roughness) + " + Smith");
+}
+BENCHMARK(BM_LtcFit)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// Arg 0: 0 analytic GGX 0.1, 1 its MERL table (the row with table_error), 2 analytic under the sun's disk,
 /// 3 the table under the sun's disk; arg 1: warm or fresh.

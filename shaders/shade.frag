@@ -29,6 +29,18 @@ uniform float uLightRadius;  // R
 uniform float uCapU;         // 1 - cos(delta)
 uniform float uCapPower;     // disk: L (1 - cos(delta)) = E / (2 pi cos^2(delta / 2)), finite however small delta is
 #endif
+#if defined(HILITE_LTC)
+// Linearly transformed cosines (render/ltc.hpp; twin render::areaRadianceLtc): M^-1 per view elevation (uniform in
+// sqrt(1 - cos)), normalised to m11 = 1, as (m00, m02, m20, m22); the magnitude int f cos per channel; the cap a
+// regular polygon of the cap's area (unit circle from double).
+#define HILITE_LTC_ELEVATIONS 32
+#define HILITE_LTC_VERTICES 32
+uniform vec4 uLtcMinv[HILITE_LTC_ELEVATIONS];
+uniform vec3 uLtcNorm[HILITE_LTC_ELEVATIONS];
+uniform float uLtcGridScale;     // (elevations - 1) / sqrt(1 - cos(89 deg))
+uniform float uLtcPolygonScale;  // sqrt(h / sin(h)), h = 2 pi / vertices: the polygon's tangent radius over the cap's
+uniform vec2 uLtcCircle[HILITE_LTC_VERTICES];
+#endif
 #endif
 uniform vec3 uWr;         // chart: mirror direction, +u (towards the normal), +v
 uniform vec3 uEu;
@@ -45,10 +57,10 @@ float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 // (llvmpipe's atan put 2e-5 of error into the pixel's area and 1.4e-4 px into u, v; now 5e-7 and 7e-5 px,
 // tests/measurement/test_accuracy.cpp), no branch, exact on wr, and accurate at rho -> 0, where acos(we.wr)
 // would lose half its digits.
-vec2 chartCoords(vec3 we, out float rhoOverSin) {
-    float a = dot(we, uEu), b = dot(we, uEv), c = dot(we, uWr);
-    float inv = 1.0 / (1.0 + c);                // 1 + cos > 0: we = -wr is below the horizon
-    float t2 = (a * a + b * b) * inv * inv;     // tan^2(rho / 2) = (sin / (1 + cos))^2
+// rho / sin(rho) from sin^2(rho) = s2 and cos(rho) = c (c > -1), no inverse trigonometry: see chartCoords.
+float angleOverSin(float s2, float c) {
+    float inv = 1.0 / (1.0 + c);
+    float t2 = s2 * inv * inv;                  // tan^2(rho / 2) = (sin / (1 + cos))^2
     float q = 1.0 / (1.0 + sqrt(1.0 + t2));     // tan(rho / 4) / tan(rho / 2)
     float x = t2 * q * q;                       // y^2 = tan^2(rho / 4), in [0, 1]
     float p = 0.0028662257;
@@ -60,7 +72,12 @@ vec2 chartCoords(vec3 we, out float rhoOverSin) {
     p = 0.1999355085 + x * p;
     p = -0.3333314528 + x * p;
     p = 1.0 + x * p;                            // atan(y) / y
-    rhoOverSin = 4.0 * p * q * inv;             // 4 y P / sin, with y / sin = q / (1 + cos)
+    return 4.0 * p * q * inv;                   // 4 y P / sin, with y / sin = q / (1 + cos)
+}
+
+vec2 chartCoords(vec3 we, out float rhoOverSin) {
+    float a = dot(we, uEu), b = dot(we, uEv), c = dot(we, uWr);  // 1 + c > 0: we = -wr is below the horizon
+    rhoOverSin = angleOverSin(a * a + b * b, c);
     return vec2(a, b) * rhoOverSin;
 }
 
@@ -92,6 +109,67 @@ vec3 capRadiance(vec3 c, float capU, float capPower, vec3 we) {
         }
     }
     return sum * (capPower * 6.283185307 / float(m));
+}
+#endif
+
+#if defined(HILITE_LIGHT_AREA) && defined(HILITE_LTC)
+// One plane's clip (z > 0 of centre + offset) of a convex polygon kept as offsets from its centre (Sutherland-Hodgman).
+int ltcClip(vec3 centre, vec3 src[HILITE_LTC_VERTICES + 2], int n, out vec3 dst[HILITE_LTC_VERTICES + 2]) {
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+        vec3 cur = src[k], nxt = src[k + 1 == n ? 0 : k + 1];
+        float zc = centre.z + cur.z, zn = centre.z + nxt.z;
+        if (zc > 0.0) dst[m++] = cur;
+        if ((zc > 0.0) != (zn > 0.0)) dst[m++] = cur + (zc / (zc - zn)) * (nxt - cur);
+    }
+    return m;
+}
+
+// One edge's integral of the clamped cosine (times 2 pi): (theta / sin(theta)) (v x w).z / (|v| |w|), w = v + d.
+float ltcEdge(vec3 v, vec3 d) {
+    vec3 w = v + d, cr = cross(v, d);
+    float inv = inversesqrt(dot(v, v) * dot(w, w));
+    float s2 = dot(cr, cr) * inv * inv;
+    return s2 > 0.0 ? angleOverSin(s2, max(dot(v, w) * inv, -0.999999)) * cr.z * inv : 0.0;
+}
+
+// int_cap f(wi, we) L cos(theta_i) dwi by linearly transformed cosines: the cap (centre c, capU = 1 - cos(alpha))
+// as a polygon clipped to the horizon, mapped by M^-1, clipped to the cosine's horizon, the clamped cosine's
+// integral as the sum of edge integrals (theta / sin(theta)) (v x w).z / (|v| |w|) / (2 pi), each edge's vertices kept
+// as the centre plus offsets, so that a 0.266 deg sun loses no digits in float.
+vec3 ltcRadiance(vec3 c, float capU, float capPower, vec3 we) {
+    float s = length(c.xy);  // the cap's tangent frame, as capRadiance
+    vec3 a = s > 0.0 ? vec3(c.x * c.z / s, c.y * c.z / s, -s) : vec3(1.0, 0.0, 0.0);
+    vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
+    float cosA = 1.0 - capU, sinA = sqrt(capU * (2.0 - capU));
+    float t = uLtcPolygonScale * sinA / max(cosA, 1e-6);
+    // The view's frame (x towards we's azimuth) and M^-1 at its elevation.
+    float h = length(we.xy);
+    vec3 t1 = h > 0.0 ? vec3(we.xy / h, 0.0) : vec3(1.0, 0.0, 0.0);
+    float g = clamp(sqrt(max(0.0, 1.0 - we.z)) * uLtcGridScale, 0.0, float(HILITE_LTC_ELEVATIONS - 1));
+    int i = min(int(g), HILITE_LTC_ELEVATIONS - 2);
+    float f = g - float(i);
+    vec4 m = mix(uLtcMinv[i], uLtcMinv[i + 1], f);
+    vec3 norm = mix(uLtcNorm[i], uLtcNorm[i + 1], f);
+    mat3 A = mat3(m.x, 0.0, m.z, 0.0, 1.0, 0.0, m.y, 0.0, m.w) *
+             mat3(t1.x, -t1.y, 0.0, t1.y, t1.x, 0.0, 0.0, 0.0, 1.0);  // M^-1 times the view frame's rows
+    vec3 C = A * c, Aa = A * a, Ab = A * b;
+    float sum = 0.0;
+    if (c.z > t * abs(a.z) && C.z > t * length(vec2(Aa.z, Ab.z))) {
+        // Every vertex above both horizons (most pixels): no clip, no arrays (llvmpipe keeps them in memory).
+        for (int k = 0; k < HILITE_LTC_VERTICES; ++k) {
+            vec2 e0 = uLtcCircle[k], e1 = uLtcCircle[k + 1 == HILITE_LTC_VERTICES ? 0 : k + 1];
+            sum += ltcEdge(C + t * (e0.x * Aa + e0.y * Ab), t * ((e1.x - e0.x) * Aa + (e1.y - e0.y) * Ab));
+        }
+    } else {
+        vec3 P[HILITE_LTC_VERTICES + 2], Q[HILITE_LTC_VERTICES + 2];
+        for (int k = 0; k < HILITE_LTC_VERTICES; ++k) P[k] = t * (uLtcCircle[k].x * a + uLtcCircle[k].y * b);
+        int n = ltcClip(c, P, HILITE_LTC_VERTICES, Q);
+        for (int k = 0; k < n; ++k) Q[k] = A * Q[k];
+        n = ltcClip(C, Q, n, P);
+        for (int k = 0; k < n; ++k) sum += ltcEdge(C + P[k], P[k + 1 == n ? 0 : k + 1] - P[k]);
+    }
+    return (max(sum, 0.0) * 0.159154943 * capPower / capU) * norm;
 }
 #endif
 
@@ -135,7 +213,9 @@ void main() {
         fragColor = vec4(0.0);
         return;
     }
-#if defined(HILITE_LIGHT_AREA)
+#if defined(HILITE_LIGHT_AREA) && defined(HILITE_LTC)
+    vec3 rad = ltcRadiance(wi, capU, capPower, we);
+#elif defined(HILITE_LIGHT_AREA)
     vec3 rad = capRadiance(wi, capU, capPower, we);
 #elif defined(HILITE_BUMPS)
     // Explicit micro-geometry: mirror facets of the bump field under a soft sun (shaders/micro.glsl).

@@ -134,11 +134,12 @@ const analysis::Shape& ExperimentRunner::reference(const Configuration& c, scene
     render::Scene exact = r.scene;
     exact.light.rings = 0;
     exact.light.ruleTarget = render::Light{}.ruleTarget;
+    exact.light.ltc = false;
     std::ostringstream key;
     key << exact << " incidence=" << r.angles.front() << " threshold=" << r.setup.options.threshold;
     auto it = m_references.find(key.str());
     if (it == m_references.end())
-        it = m_references.emplace(key.str(), measurement::measureReference(r.scene, r.setup.options).shape).first;
+        it = m_references.emplace(key.str(), measurement::measureReference(exact, r.setup.options).shape).first;
     return it->second;
 }
 

@@ -4,6 +4,7 @@
 #include "core/quadrature.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
+#include "hilite/render/ltc.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -354,6 +355,14 @@ RuleCheck chooseRule(const Scene& s) {
         }
         return e;
     };
+    if (s.light.ltc) {  // no rings: the error is the linearly transformed cosine's, at the same points
+        double e = 0;
+        for (size_t i = 0; peak > 0 && i < points.size(); ++i) {
+            const double ltc = brdf::luminance(areaRadianceLtc(s, seenPoint(eye, points[i]), points[i]));
+            e = std::max(e, std::abs(ltc - values[i]) / peak);
+        }
+        return {0, e};
+    }
     if (s.light.rings > 0) return {s.light.rings, errorOf(s.light.rings)};
     RuleCheck best{kMaxRings, 0.0};
     for (int n : kRingLadder) {
@@ -368,7 +377,7 @@ RuleCheck chooseRule(const Scene& s) {
 
 Scene withRuleTwin(const Scene& s) {
     Scene out = s;
-    if (s.light.area() && !s.brdfFile) out.light.twinRings = lightRings(s);
+    if (s.light.area() && !s.brdfFile) out.light.twinRings = s.light.ltc ? 1 : lightRings(s);
     return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/render/area_light.hpp"
+#include "hilite/render/ltc.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -26,9 +27,10 @@ void measurePixelCpu(const Scene& scene, const PinholeCamera& cam, const MirrorC
         std::fill(out, out + 4, 0.f);
         return;
     }
-    if (scene.light.area() && rings < 1) rings = lightRings(scene);
-    const double L = brdf::luminance(scene.light.area() ? areaRadianceRule(scene, p, we, rings)
-                                                        : surfaceRadiance(scene, cam.position, we));
+    if (scene.light.area() && !scene.light.ltc && rings < 1) rings = lightRings(scene);
+    const double L = brdf::luminance(
+        scene.light.area() ? (scene.light.ltc ? areaRadianceLtc(scene, p, we) : areaRadianceRule(scene, p, we, rings))
+                           : surfaceRadiance(scene, cam.position, we));
     const dvec2 uv = chart.coords(we);
     const double cosGamma = 1.0 / len;
     const double pixelArea = (2.0 * cam.tanHalfX / cam.width) * (2.0 * cam.tanHalfY / cam.height);

@@ -8,6 +8,7 @@
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
 #include "hilite/render/area_light.hpp"
+#include "hilite/render/ltc.hpp"
 #include "render/brdf_file_source.hpp"
 #include "render/bumps.hpp"
 
@@ -32,7 +33,8 @@ std::ostream& operator<<(std::ostream& os, const Scene& s) {
     const Light& l = s.light;
     os << " light=" << toString(l.type) << " incidence=" << l.incidenceDeg << " azimuth=" << l.azimuthDeg;
     if (l.area())
-        os << " rings=" << (l.rings > 0 ? std::to_string(l.rings) : "auto") << " rule_target=" << l.ruleTarget;
+        os << " rings=" << (l.rings > 0 ? std::to_string(l.rings) : "auto") << " rule_target=" << l.ruleTarget
+           << (l.ltc ? " light_rule=ltc" : "");
     if (l.type == LightType::Sphere) os << " light_radius=" << l.radius;
     if (l.type == LightType::Disk) os << " light_angle=" << l.angleDeg;
     if (!l.distant())
@@ -78,6 +80,14 @@ std::string describeLight(const Scene& scene) {
     }
     if (scene.brdfFile) return s.str();
     const RuleCheck rule = lightRule(scene);
+    if (l.ltc) {
+        const LtcTable& t = ltcTable(scene);
+        s << ": linearly transformed cosines (light_rule ltc): a cosine lobe fitted to the BRDF at " << kLtcElevations
+          << " view elevations (" << t.seconds << " s, once per BRDF), the light a " << kLtcVertices
+          << "-gon; radiance error " << rule.error << " of the peak against the exact integral; the framing twin "
+          << "evaluates the same in double, the reference integrates adaptively to " << kExactTolerance;
+        return s.str();
+    }
     s << ": GL rule " << rule.rings << " rings x " << 4 * rule.rings << " azimuths = " << 4 * rule.rings * rule.rings
       << " points per pixel (" << (l.rings > 0 ? "as given" : "chosen") << "; radiance error " << rule.error
       << " of the peak against the exact integral; the twin integrates adaptively to " << kExactTolerance << ")";
@@ -157,8 +167,10 @@ dvec3 surfaceRadiance(const Scene& s, const dvec3& lightDirection, const dvec3& 
     if (s.brdfFile) requireTwin(s, "the double-precision evaluation");  // checked first: no string per call
     if (s.light.type == LightType::Directional) return brdf::radiance(s.brdf, lightDirection, we, s.light.irradiance);
     const dvec3 p = eye - (eye.z / we.z) * we;  // where the eye's ray meets the plane
-    if (s.light.area())
-        return s.light.twinRings > 0 ? areaRadianceRule(s, p, we, s.light.twinRings) : areaRadianceExact(s, p, we);
+    if (s.light.area()) {
+        if (s.light.twinRings <= 0) return areaRadianceExact(s, p, we);
+        return s.light.ltc ? areaRadianceLtc(s, p, we) : areaRadianceRule(s, p, we, s.light.twinRings);
+    }
     const dvec3 toLight = s.light.distance * lightDirection - p;  // Light::position()
     const double d2 = glm::dot(toLight, toLight);
     return brdf::radiance(s.brdf, toLight / std::sqrt(d2), we, s.light.intensity / d2);
@@ -177,13 +189,32 @@ void set3(const gl::Program& p, const char* name, const dvec3& v) { p.set(name, 
 /// The area light's rule and cap (shade.frag, HILITE_LIGHT_SPHERE / HILITE_LIGHT_DISK): the rings and their
 /// nodes and weights, the radiance L and the cap's size, all computed in double here.
 void setAreaLightUniforms(const gl::Program& prog, const Scene& scene) {
-    const int n = lightRings(scene);
-    const RingRule& rule = ringRule(n);
-    float x[kMaxRings] = {}, w[kMaxRings] = {};
-    for (int i = 0; i < n; ++i) x[i] = float(rule.x[size_t(i)]), w[i] = float(rule.w[size_t(i)]);
-    glUniform1i(prog.uniform("uRings"), n);
-    glUniform1fv(prog.uniform("uRingX"), kMaxRings, x);
-    glUniform1fv(prog.uniform("uRingW"), kMaxRings, w);
+    if (scene.light.ltc) {  // the fitted table (HILITE_LTC): M^-1 per elevation and the magnitude per channel
+        const LtcTable& t = ltcTable(scene);
+        float m[4 * kLtcElevations], norm[3 * kLtcElevations];
+        for (int k = 0; k < kLtcElevations; ++k) {
+            for (int j = 0; j < 4; ++j) m[4 * k + j] = float(t.minv[size_t(k)][size_t(j)]);
+            for (int j = 0; j < 3; ++j) norm[3 * k + j] = float(t.norm[size_t(k)][j]);
+        }
+        glUniform4fv(prog.uniform("uLtcMinv"), kLtcElevations, m);
+        glUniform3fv(prog.uniform("uLtcNorm"), kLtcElevations, norm);
+        const double uMax = std::sqrt(1.0 - std::cos(deg2rad(kLtcMaxElevationDeg)));
+        prog.set("uLtcGridScale", float((kLtcElevations - 1) / uMax));
+        const double h = 2.0 * kPi / kLtcVertices;
+        prog.set("uLtcPolygonScale", float(std::sqrt(h / std::sin(h))));
+        float circle[2 * kLtcVertices];
+        for (int k = 0; k < kLtcVertices; ++k)
+            circle[2 * k] = float(std::cos(h * k)), circle[2 * k + 1] = float(std::sin(h * k));
+        glUniform2fv(prog.uniform("uLtcCircle"), kLtcVertices, circle);
+    } else {
+        const int n = lightRings(scene);
+        const RingRule& rule = ringRule(n);
+        float x[kMaxRings] = {}, w[kMaxRings] = {};
+        for (int i = 0; i < n; ++i) x[i] = float(rule.x[size_t(i)]), w[i] = float(rule.w[size_t(i)]);
+        glUniform1i(prog.uniform("uRings"), n);
+        glUniform1fv(prog.uniform("uRingX"), kMaxRings, x);
+        glUniform1fv(prog.uniform("uRingW"), kMaxRings, w);
+    }
     const LightCap cap = lightCap(scene.light, scene.light.position());  // L (and the disk's cap) hold everywhere
     if (scene.light.type == LightType::Sphere) {
         prog.set("uCapRadianceR2", float(cap.radiance * scene.light.radius * scene.light.radius));
@@ -224,6 +255,15 @@ const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightTyp
 }
 
 const gl::Program& Renderer::program(const Scene& scene, Output out) {
+    if (!scene.brdfFile && scene.light.ltc && scene.light.area()) {  // the light by linearly transformed cosines
+        const std::string key = effectKey(scene.brdf, out) + lightKey(scene.light.type) + "+ltc";
+        auto it = m_programs.find(key);
+        if (it != m_programs.end()) return *it->second;
+        ProgramSources src = programSources(scene.brdf, out, scene.light.type, m_shaderDir, false);
+        src.fragment.front().text += "#define HILITE_LTC 1\n";
+        auto prog = std::make_unique<gl::Program>(src.vertex, src.fragment);
+        return *m_programs.emplace(key, std::move(prog)).first->second;
+    }
     if (!scene.brdfFile) return program(scene.brdf, out, scene.light.type, scene.surface.bumps);
     const brdf_file::BrdfFile& f = *scene.brdfFile;
     const std::string key = brdfFileKey(f, out) + lightKey(scene.light.type);

@@ -173,6 +173,7 @@ void bindChoice(Param& e, Get get, std::vector<std::string> names, Parse parse) 
 constexpr Named<bool> kSpectralFresnel[] = {{true, "table"}, {false, "exact"}};
 constexpr Named<bool> kBumps[] = {{false, "none"}, {true, "explicit"}};
 constexpr Named<bool> kBoundaries[] = {{true, "subpixel"}, {false, "pixel"}};
+constexpr Named<bool> kLightRules[] = {{false, "rings"}, {true, "ltc"}};
 constexpr Named<bool> kRenderers[] = {{false, "gl"}, {true, "cpu"}};
 constexpr Named<bool> kCrops[] = {{true, "on"}, {false, "off"}};
 constexpr Named<analysis::Lobe> kLobes[] = {{analysis::Lobe::All, "all"}, {analysis::Lobe::Mirror, "mirror"}};
@@ -822,6 +823,25 @@ std::vector<Param> build() {
          [](const Resolved& r) -> json { return render::lightRings(r.scene); }});
     bindAutomatic(
         p.back(), [](auto& r) -> auto& { return r.scene.light.rings; }, "auto");
+    add({"light_rule",
+         T::Light,
+         K::Choice,
+         "",
+         0,
+         0,
+         false,
+         false,
+         {},
+         "",
+         "sphere, disk: how GL integrates the light: rings (the rule, light_rings) | ltc (linearly transformed "
+         "cosines: a cosine lobe fitted per view elevation to the isotropic BRDF, the light a 32-gon; the fit "
+         "costs about a second per BRDF, once per process; the reference stays exact)",
+         "light sphere, disk",
+         area,
+         "light_rule",
+         [](const Resolved& r) -> json { return r.scene.light.ltc ? "ltc" : "rings"; }});
+    bindChoice(
+        p.back(), [](auto& r) -> auto& { return r.scene.light.ltc; }, kLightRules);
 
     // ---- [camera] ----
     add({"size",

@@ -10,6 +10,7 @@
 #include "brdf/spectral.hpp"
 #include "core/text.hpp"
 #include "hilite/core/error.hpp"
+#include "hilite/render/ltc.hpp"
 #include "render/bumps.hpp"
 #include "render/shader_source.hpp"
 #include "scene/fit_table.hpp"
@@ -32,10 +33,11 @@ namespace {
 // itself: Param::write), each name checked by the compiler (scene::Name).
 constexpr Name kBrdf{"brdf"}, kBumpFilter{"bump_filter"}, kBumps{"bumps"}, kDiffuse{"diffuse"}, kElevation{"elevation"},
     kEta{"eta"}, kF0{"f0"}, kFitTable{"fit_table"}, kFitMaterial{"fit_material"}, kFov{"fov"}, kFresnel{"fresnel"},
-    kGpu{"gpu"}, kIncidence{"incidence"}, kK{"k"}, kLight{"light"}, kLightRadius{"light_radius"}, kMaterial{"material"},
-    kMeasured{"measured"}, kModel{"model"}, kMultiscatter{"multiscatter"}, kNdfTable{"ndf_table"}, kParam{"param"},
-    kRenderer{"renderer"}, kLobe{"lobe"}, kRoughness{"roughness"}, kRoughnessY{"roughness_y"}, kSize{"size"},
-    kSupersample{"supersample"}, kTolerance{"tolerance"};
+    kGpu{"gpu"}, kIncidence{"incidence"}, kK{"k"}, kLight{"light"}, kLightRadius{"light_radius"},
+    kLightRule{"light_rule"}, kMaterial{"material"}, kMeasured{"measured"}, kModel{"model"},
+    kMultiscatter{"multiscatter"}, kNdfTable{"ndf_table"}, kParam{"param"}, kRenderer{"renderer"}, kLobe{"lobe"},
+    kRoughness{"roughness"}, kRoughnessY{"roughness_y"}, kSize{"size"}, kSupersample{"supersample"},
+    kTolerance{"tolerance"};
 
 /// Prints "hilite: warning: MSG" on stderr, once per process for each message (a sweep repeats them).
 void warnOnce(const std::string& msg) {
@@ -455,6 +457,9 @@ Resolved resolve(const Values& given, Purpose purpose) {
     r.angles = in.angles(kIncidence);
     s.light.incidenceDeg = r.angles.front();
     checkLight(in, s.light, r.angles);
+    if (s.light.area() && s.light.ltc)
+        if (const std::string why = render::ltcRefusal(s); !why.empty())
+            throw InputError(in.where(kLightRule) + " ltc: " + why + " (allowed here: rings)");
 
     in.size(kSize, r.setup.width, r.setup.height);
     // r.fovDeg 0: automatic (the registry refuses a given 0)

@@ -130,6 +130,7 @@ std::vector<Case> flagCases() {
         {"--light-radius", {"0", "-1", "-0", "nan", "inf", "''", "1e-101"}},
         {"--light-angle", {"0", "90", "91", "-1", "nan", "''", "1e-160"}},  // an angular radius in [1e-100, 90)
         {"--light-rings", {"0", "33", "1.5", "-1", "automatic", "''"}},
+        {"--light-rule", {"bogus", "LTC", "''"}},
     };
     for (const auto& [flag, values] : numbers)
         for (const auto& v : values) cases.push_back({measure + flag + " " + v, 2, flag});
@@ -143,6 +144,11 @@ std::vector<Case> flagCases() {
     cases.push_back({"render --size 32 --light sphere --light-radius 10 -o {d}/existing.png", 2, "reaches the plane"});
     cases.push_back({measure + "--light disk --bumps explicit", 2, "--light disk: not with --bumps explicit"});
     cases.push_back({measure + "--light sphere --brdf {d}/ok.brdf", 2, "--light sphere: not with --brdf"});
+    // Linearly transformed cosines are fitted to an isotropic analytic lobe: anything else is refused by name.
+    cases.push_back(
+        {measure + "--light disk --light-rule ltc --roughness-y 0.2", 2, "--light-rule ltc: the BRDF is anisotropic"});
+    cases.push_back({measure + "--light sphere --light-rule ltc --model retro", 2,
+                     "--light-rule ltc: a retroreflector's lobe is not about the mirror direction"});
     cases.push_back({"run {d}/tiny.toml --shard 1/2x -o {d}/sh", 2, "--shard"});
     cases.push_back({"run {d}/tiny.toml --shard 0/0 -o {d}/sh", 2, "--shard"});
     cases.push_back({"run ''", 2, "empty experiment name"});

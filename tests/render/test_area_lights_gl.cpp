@@ -229,3 +229,39 @@ TEST_CASE("measurement::measureGl extreme lights: a disk centred on the horizon,
     CHECK(rule.error >
           measurement::kLightRuleFlag);  // what diagnose() turns into the flag (the test above measures it)
 }
+
+TEST_CASE("render::Renderer linearly transformed cosines: GL equals its double twin (the framing's) within 1e-3") {
+    // Measured: 1.1e-4 (the sun on GGX 0.1 at 60 deg), 5.0e-5, 6.3e-5 (a sphere), 1.3e-5 (a disk the horizon cuts).
+    // Their error against the exact light: tests/render/test_ltc.cpp and docs/speed.md.
+    auto& env = test::glEnv();
+    struct Case {
+        std::string what;
+        render::Scene scene;
+    };
+    render::Scene sphere = ggx(0.1, 50);  // two fits in all (each ~1 s)
+    sphere.light.type = render::LightType::Sphere;
+    sphere.light.radius = 0.5;
+    const std::vector<Case> cases = {
+        {"GGX 0.1 at 60 deg, the sun", withDisk(ggx(0.1, 60), 0.266)},
+        {"GGX 0.02 at 80 deg, the sun", withDisk(ggx(0.02, 80), 0.266)},
+        {"GGX 0.1 at 50 deg, sphere R 0.5 at 10", sphere},
+        {"GGX 0.1 at 86 deg, an 8 deg disk the horizon cuts (the clipped path)", withDisk(ggx(0.1, 86), 8.0)},
+    };
+    for (Case c : cases) {
+        CAPTURE(c.what);
+        c.scene.light.ltc = true;
+        const double fov = c.scene.brdf.roughness < 0.05 ? 8.0 : 40.0;
+        const PinholeCamera cam = measurement::measurementCamera(c.scene, c.scene.light.chart().wr(), fov, 64, 64);
+        const test::TwinComparison twin = test::compareWithTwin(*env.renderer, render::withRuleTwin(c.scene), cam);
+        MESSAGE(c.what << ": LTC in GL vs its double twin " << twin.maxRelError << " over " << twin.compared
+                       << " pixels (per pixel, relative)");
+        CHECK(twin.compared > 500);
+        CHECK(twin.allFinite);
+        CHECK(twin.allNonNegative);
+        CHECK(twin.maxRelError < 1e-3);
+        const auto effects = render::activeEffects(c.scene);  // explain names the rule that runs
+        CHECK(std::any_of(effects.begin(), effects.end(), [](const std::string& e) {
+            return e.find("linearly transformed cosines") != std::string::npos;
+        }));
+    }
+}

@@ -81,13 +81,15 @@ struct RuleCheck {
 };
 /// The rings the GL rule renders the scene with (0 for a point or directional light): light.rings when set,
 /// else the cheapest of kRingLadder whose error is within light.ruleTarget (kMaxRings if none is), with that
-/// error. Kept per thread for the last scene (every draw asks).
+/// error. Kept per thread for the last scene (every draw asks). With light.ltc: 0 rings and the error of the
+/// linearly transformed cosines (render/ltc.hpp) at the same points.
 RuleCheck lightRule(const Scene& s);
 inline int lightRings(const Scene& s) { return s.light.rings > 0 ? s.light.rings : lightRule(s).rings; }
 
 /// The scene whose CPU twin integrates a sphere or disk light by the GL rule it is drawn with (light.twinRings =
 /// lightRings): for the framing searches of a GL or CPU measurement, thousands of twin evaluations, each 4n^2
-/// BRDF evaluations instead of the exact integral's 80-80,000. The scene itself for any other light.
+/// BRDF evaluations instead of the exact integral's 80-80,000 (with light.ltc, twinRings 1: the twin evaluates the
+/// same linearly transformed cosines as GL, render::areaRadianceLtc). The scene itself for any other light.
 Scene withRuleTwin(const Scene& s);
 
 }  // namespace hilite::render

@@ -52,6 +52,10 @@ struct Light {
     /// does; n > 0: the GL rule's n rings in double (render::areaRadianceRule), which the GL and CPU paths' framing
     /// searches use (render::withRuleTwin): the lobe that is drawn, at 4n^2 evaluations instead of 80-80,000.
     int twinRings = 0;
+    /// sphere, disk: integrate the cap by linearly transformed cosines (render/ltc.hpp: a cosine lobe fitted to
+    /// the scene's isotropic BRDF per view elevation, the cap as a polygon) instead of the rule, in GL and in the
+    /// framing twin (twinRings > 0); the reference still integrates exactly.
+    bool ltc = false;
     /// The measurement chart's centre when it is not the mirror direction (a highlight framed about a peak far
     /// from it, e.g. retroreflection: measurement/peak_frame.hpp). Unset: the mirror direction.
     std::optional<dvec3> chartCenter;
