@@ -34,7 +34,7 @@ uniform float uCapPower;     // disk: L (1 - cos(delta)) = E / (2 pi cos^2(delta
 // sqrt(1 - cos)), normalised to m11 = 1, as (m00, m02, m20, m22); the magnitude int f cos per channel; the cap a
 // regular polygon of the cap's area (unit circle from double).
 #define HILITE_LTC_ELEVATIONS 32
-#define HILITE_LTC_VERTICES 32
+#define HILITE_LTC_VERTICES 16
 uniform vec4 uLtcMinv[HILITE_LTC_ELEVATIONS];
 uniform vec3 uLtcNorm[HILITE_LTC_ELEVATIONS];
 uniform float uLtcGridScale;     // (elevations - 1) / sqrt(1 - cos(89 deg))
@@ -113,16 +113,16 @@ vec3 capRadiance(vec3 c, float capU, float capPower, vec3 we) {
 #endif
 
 #if defined(HILITE_LIGHT_AREA) && defined(HILITE_LTC)
-// One plane's clip (z > 0 of centre + offset) of a convex polygon kept as offsets from its centre (Sutherland-Hodgman).
-int ltcClip(vec3 centre, vec3 src[HILITE_LTC_VERTICES + 2], int n, out vec3 dst[HILITE_LTC_VERTICES + 2]) {
-    int m = 0;
-    for (int k = 0; k < n; ++k) {
-        vec3 cur = src[k], nxt = src[k + 1 == n ? 0 : k + 1];
-        float zc = centre.z + cur.z, zn = centre.z + nxt.z;
-        if (zc > 0.0) dst[m++] = cur;
-        if ((zc > 0.0) != (zn > 0.0)) dst[m++] = cur + (zc / (zc - zn)) * (nxt - cur);
+// Narrows [t0, t1] to where z(t) = za + t (zb - za) > 0 (za, zb: z at a segment's ends); empty: t1 < t0.
+void ltcKeep(float za, float zb, inout float t0, inout float t1) {
+    if (za > 0.0 && zb > 0.0) return;
+    if (za <= 0.0 && zb <= 0.0) {
+        t1 = t0 - 1.0;
+        return;
     }
-    return m;
+    float t = za / (za - zb);
+    if (za > 0.0) t1 = min(t1, t);
+    else t0 = max(t0, t);
 }
 
 // One edge's integral of the clamped cosine (times 2 pi): (theta / sin(theta)) (v x w).z / (|v| |w|), w = v + d.
@@ -162,12 +162,44 @@ vec3 ltcRadiance(vec3 c, float capU, float capPower, vec3 we) {
             sum += ltcEdge(C + t * (e0.x * Aa + e0.y * Ab), t * ((e1.x - e0.x) * Aa + (e1.y - e0.y) * Ab));
         }
     } else {
-        vec3 P[HILITE_LTC_VERTICES + 2], Q[HILITE_LTC_VERTICES + 2];
-        for (int k = 0; k < HILITE_LTC_VERTICES; ++k) P[k] = t * (uLtcCircle[k].x * a + uLtcCircle[k].y * b);
-        int n = ltcClip(c, P, HILITE_LTC_VERTICES, Q);
-        for (int k = 0; k < n; ++k) Q[k] = A * Q[k];
-        n = ltcClip(C, Q, n, P);
-        for (int k = 0; k < n; ++k) sum += ltcEdge(C + P[k], P[k + 1 == n ? 0 : k + 1] - P[k]);
+        // A horizon cuts it: the boundary of polygon & both half-spaces is each edge's part inside both, the
+        // chord along the plane's horizon between the polygon's exit and entry (inside the cosine's), and the
+        // chord along the cosine's horizon (inside the plane's). No arrays: llvmpipe's cost 3x for every pixel.
+        vec3 x1 = vec3(0.0), n1 = vec3(0.0), x2 = vec3(0.0), n2 = vec3(0.0);  // exits and entries (offsets)
+        bool cut1 = false, cut2 = false;
+        for (int k = 0; k < HILITE_LTC_VERTICES; ++k) {
+            vec2 e0 = uLtcCircle[k], e1 = uLtcCircle[k + 1 == HILITE_LTC_VERTICES ? 0 : k + 1];
+            vec3 oa = t * (e0.x * a + e0.y * b), ob = t * (e1.x * a + e1.y * b), Oa = A * oa, Ob = A * ob;
+            float za1 = c.z + oa.z, zb1 = c.z + ob.z, za2 = C.z + Oa.z, zb2 = C.z + Ob.z;
+            if ((za1 > 0.0) != (zb1 > 0.0)) {
+                vec3 p = oa + (za1 / (za1 - zb1)) * (ob - oa);
+                if (za1 > 0.0) x1 = p;
+                else n1 = p;
+                cut1 = true;
+            }
+            if ((za2 > 0.0) != (zb2 > 0.0)) {
+                vec3 p = oa + (za2 / (za2 - zb2)) * (ob - oa);
+                if (za2 > 0.0) x2 = p;
+                else n2 = p;
+                cut2 = true;
+            }
+            float t0 = 0.0, t1 = 1.0;
+            ltcKeep(za1, zb1, t0, t1);
+            ltcKeep(za2, zb2, t0, t1);
+            if (t1 > t0) sum += ltcEdge(C + Oa + t0 * (Ob - Oa), (t1 - t0) * (Ob - Oa));
+        }
+        if (cut1) {
+            vec3 Xa = A * x1, Xb = A * n1;
+            float t0 = 0.0, t1 = 1.0;
+            ltcKeep(C.z + Xa.z, C.z + Xb.z, t0, t1);
+            if (t1 > t0) sum += ltcEdge(C + Xa + t0 * (Xb - Xa), (t1 - t0) * (Xb - Xa));
+        }
+        if (cut2) {
+            vec3 Xa = A * x2, Xb = A * n2;
+            float t0 = 0.0, t1 = 1.0;
+            ltcKeep(c.z + x2.z, c.z + n2.z, t0, t1);
+            if (t1 > t0) sum += ltcEdge(C + Xa + t0 * (Xb - Xa), (t1 - t0) * (Xb - Xa));
+        }
     }
     return (max(sum, 0.0) * 0.159154943 * capPower / capU) * norm;
 }

@@ -18,12 +18,6 @@ namespace hilite::render {
 
 namespace {
 
-/// The polygon's tangent radius over the cap's: a regular N-gon of the disk's area.
-double polygonScale() {
-    const double h = 2.0 * kPi / kLtcVertices;
-    return std::sqrt(h / std::sin(h));
-}
-
 /// The fit's quadrature grid about the mirror direction q: points, weights, the lobe F (unit mass, luminance)
 /// and f cos per channel.
 struct Grid {
@@ -207,6 +201,11 @@ LtcTable ltcFit(const brdf::Params& p) {
     return t;
 }
 
+double ltcPolygonScale(int vertices) {
+    const double h = 2.0 * kPi / vertices;
+    return std::sqrt(h / std::sin(h));
+}
+
 double ltcGridCoordinate(double cosTheta) {
     const double uMax = std::sqrt(1.0 - std::cos(deg2rad(kLtcMaxElevationDeg)));
     const double u = std::sqrt(std::max(0.0, 1.0 - cosTheta)) / uMax;
@@ -231,11 +230,12 @@ const LtcTable& ltcTable(const Scene& s) {
     return *slot;
 }
 
-double ltcCapIntegral(const dvec3& c, const dvec3& a, const dvec3& b, double t, const std::array<double, 9>& minv) {
+double ltcCapIntegral(const dvec3& c, const dvec3& a, const dvec3& b, double t, const std::array<double, 9>& minv,
+                      int vertices) {
     // The polygon as offsets from its centre; each clip (Sutherland-Hodgman, one plane) keeps that form.
-    std::vector<dvec3> o(kLtcVertices), clipped;
-    for (int k = 0; k < kLtcVertices; ++k) {
-        const double phi = 2.0 * kPi * k / kLtcVertices;
+    std::vector<dvec3> o(size_t(std::max(3, vertices))), clipped;
+    for (int k = 0; k < int(o.size()); ++k) {
+        const double phi = 2.0 * kPi * k / double(o.size());
         o[size_t(k)] = t * (std::cos(phi) * a + std::sin(phi) * b);
     }
     auto clip = [&](const dvec3& centre, const std::vector<dvec3>& in, std::vector<dvec3>& out) {
@@ -263,7 +263,7 @@ double ltcCapIntegral(const dvec3& c, const dvec3& a, const dvec3& b, double t, 
     return sum / (2.0 * kPi);
 }
 
-dvec3 areaRadianceLtc(const Scene& s, const dvec3& p, const dvec3& we) {
+dvec3 areaRadianceLtc(const Scene& s, const dvec3& p, const dvec3& we, int vertices) {
     if (!s.light.area())
         throw InputError(std::string("areaRadianceLtc: the scene's light is ") + toString(s.light.type) +
                          ": only a sphere or disk light has a cap to integrate");
@@ -281,8 +281,8 @@ dvec3 areaRadianceLtc(const Scene& s, const dvec3& p, const dvec3& we) {
     const dvec3 norm = (1.0 - f) * table.norm[size_t(i)] + f * table.norm[size_t(i) + 1];
     const std::array<double, 9> minv{m[0], 0.0, m[1], 0.0, 1.0, 0.0, m[2], 0.0, m[3]};
     const double cosA = 1.0 - cap.uMax, sinA = std::sqrt(cap.uMax * (2.0 - cap.uMax));
-    const double t = polygonScale() * sinA / std::max(cosA, 1e-6);
-    const double I = ltcCapIntegral(local(cap.center), local(cap.a), local(cap.b), t, minv);
+    const double t = ltcPolygonScale(vertices) * sinA / std::max(cosA, 1e-6);
+    const double I = ltcCapIntegral(local(cap.center), local(cap.a), local(cap.b), t, minv, vertices);
     return (cap.radiance * std::max(I, 0.0)) * norm;
 }
 

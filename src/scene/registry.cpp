@@ -834,7 +834,7 @@ std::vector<Param> build() {
          {},
          "",
          "sphere, disk: how GL integrates the light: rings (the rule, light_rings) | ltc (linearly transformed "
-         "cosines: a cosine lobe fitted per view elevation to the isotropic BRDF, the light a 32-gon; the fit "
+         "cosines: a cosine lobe fitted per view elevation to the isotropic BRDF, the light a 16-gon; the fit "
          "costs about a second per BRDF, once per process; the reference stays exact)",
          "light sphere, disk",
          area,

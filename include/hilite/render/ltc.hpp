@@ -26,7 +26,7 @@ namespace hilite::render {
 /// View elevations of the fit and the cap polygon's vertices (shade.frag's HILITE_LTC_* must agree).
 constexpr int kLtcElevations = 32;
 constexpr double kLtcMaxElevationDeg = 89.0;
-constexpr int kLtcVertices = 32;
+constexpr int kLtcVertices = 16;
 
 /// The fitted table of one BRDF.
 struct LtcTable {
@@ -52,9 +52,14 @@ double ltcGridCoordinate(double cosTheta);
 
 /// Reflected radiance toward we from the plane point p under the scene's sphere or disk light by LTC (double;
 /// GL computes the same in float).
-dvec3 areaRadianceLtc(const Scene& s, const dvec3& p, const dvec3& we);
+/// `vertices`: the cap's polygon (GL draws kLtcVertices; others measure the polygon's own error).
+dvec3 areaRadianceLtc(const Scene& s, const dvec3& p, const dvec3& we, int vertices = kLtcVertices);
 /// int_P D_o over a cap's polygon (the cap about unit c with offsets of tangent radius t along the tangent frame
 /// a, b), after M^-1 (row-major 3x3) and both horizon clips: exposed for tests.
-double ltcCapIntegral(const dvec3& c, const dvec3& a, const dvec3& b, double t, const std::array<double, 9>& minv);
+double ltcCapIntegral(const dvec3& c, const dvec3& a, const dvec3& b, double t, const std::array<double, 9>& minv,
+                      int vertices = kLtcVertices);
+/// The polygon's tangent radius over the cap's: sqrt(h / sin(h)), h = 2 pi / vertices (a regular polygon of the
+/// disk's area).
+double ltcPolygonScale(int vertices = kLtcVertices);
 
 }  // namespace hilite::render
