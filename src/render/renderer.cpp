@@ -103,7 +103,11 @@ ProgramSources programSources(const brdf::Params& p, Output out, LightType light
 }
 
 ProgramSources programSources(const Scene& scene, Output out, const std::string& shaderDir) {
-    if (!scene.brdfFile) return programSources(scene.brdf, out, scene.light.type, shaderDir, scene.surface.bumps);
+    if (!scene.brdfFile) {
+        ProgramSources src = programSources(scene.brdf, out, scene.light.type, shaderDir, scene.surface.bumps);
+        if (scene.light.ltc && scene.light.area()) src.fragment.front().text += "#define HILITE_LTC 1\n";
+        return src;
+    }
     ProgramSources src = assembleBrdfFile(*scene.brdfFile, out, shaderDir);
     src.fragment.front().text += lightDefine(scene.light.type);
     return src;
@@ -259,8 +263,7 @@ const gl::Program& Renderer::program(const Scene& scene, Output out) {
         const std::string key = effectKey(scene.brdf, out) + lightKey(scene.light.type) + "+ltc";
         auto it = m_programs.find(key);
         if (it != m_programs.end()) return *it->second;
-        ProgramSources src = programSources(scene.brdf, out, scene.light.type, m_shaderDir, false);
-        src.fragment.front().text += "#define HILITE_LTC 1\n";
+        const ProgramSources src = programSources(scene, out, m_shaderDir);  // with HILITE_LTC
         auto prog = std::make_unique<gl::Program>(src.vertex, src.fragment);
         return *m_programs.emplace(key, std::move(prog)).first->second;
     }

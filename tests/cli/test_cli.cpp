@@ -141,3 +141,17 @@ TEST_CASE("cli::brdf prints tables and JSON lines with the documented fields, an
     CHECK(render.out.find("material=copper wavelengths=81") != std::string::npos);
     std::filesystem::remove(png);
 }
+
+TEST_CASE("cli::measure --light-rule ltc reaches the row: its column, its rule's error, the flag it earns") {
+    // The knob's accuracy and price: tests/render/test_ltc.cpp, docs/speed.md. A bad value: tests/cli/test_hostile.cpp.
+    const auto t =
+        hilite("measure --light disk --light-rule ltc --roughness 0.1 --incidence 60 --size 64 --json", true);
+    REQUIRE(t.code == 0);
+    CHECK(t.out.find("\"light_rule\":\"ltc\"") != std::string::npos);
+    CHECK(t.out.find("\"light_rings\":0") != std::string::npos);
+    CHECK(t.out.find("light_undersampled") != std::string::npos);  // LTC's error, 5.5e-2 of the peak here
+    const auto rule = hilite("measure --light disk --roughness 0.1 --incidence 60 --size 64 --json", true);
+    REQUIRE(rule.code == 0);
+    CHECK(rule.out.find("\"light_rule\":\"rings\"") != std::string::npos);
+    CHECK(rule.out.find("light_undersampled") == std::string::npos);
+}
