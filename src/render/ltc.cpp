@@ -25,54 +25,55 @@ struct Grid {
     std::vector<double> weight, F;
 };
 
-/// Nelder-Mead in 3 dimensions (deterministic; the objective is a fixed quadrature).
-template <class Fn>
-std::array<double, 3> nelderMead(Fn&& f, std::array<double, 3> x0, std::array<double, 3> step, int maxIter,
+/// Nelder-Mead in N dimensions (deterministic; the objective is a fixed quadrature).
+template <size_t N, class Fn>
+std::array<double, N> nelderMead(Fn&& f, std::array<double, N> x0, std::array<double, N> step, int maxIter,
                                  int& evaluations) {
-    using P = std::array<double, 3>;
-    std::array<P, 4> s;
-    std::array<double, 4> v;
-    for (int i = 0; i < 4; ++i) {
-        s[size_t(i)] = x0;
-        if (i > 0) s[size_t(i)][size_t(i - 1)] += step[size_t(i - 1)];
-        v[size_t(i)] = f(s[size_t(i)]);
+    using P = std::array<double, N>;
+    std::array<P, N + 1> s;
+    std::array<double, N + 1> v;
+    for (size_t i = 0; i <= N; ++i) {
+        s[i] = x0;
+        if (i > 0) s[i][i - 1] += step[i - 1];
+        v[i] = f(s[i]);
         ++evaluations;
     }
     auto lerp = [](const P& a, const P& b, double t) {
         P r;
-        for (size_t k = 0; k < 3; ++k) r[k] = a[k] + t * (b[k] - a[k]);
+        for (size_t k = 0; k < N; ++k) r[k] = a[k] + t * (b[k] - a[k]);
         return r;
     };
     for (int it = 0; it < maxIter; ++it) {
-        std::array<int, 4> o{0, 1, 2, 3};
-        std::sort(o.begin(), o.end(), [&](int a, int b) { return v[size_t(a)] < v[size_t(b)]; });
-        std::array<P, 4> s2;
-        std::array<double, 4> v2;
-        for (size_t i = 0; i < 4; ++i) s2[i] = s[size_t(o[i])], v2[i] = v[size_t(o[i])];
+        std::array<size_t, N + 1> o;
+        for (size_t i = 0; i <= N; ++i) o[i] = i;
+        std::sort(o.begin(), o.end(), [&](size_t a, size_t b) { return v[a] < v[b]; });
+        std::array<P, N + 1> s2;
+        std::array<double, N + 1> v2;
+        for (size_t i = 0; i <= N; ++i) s2[i] = s[o[i]], v2[i] = v[o[i]];
         s = s2, v = v2;
-        if (v[3] - v[0] <= 1e-7 * std::abs(v[0]) + 1e-300) break;
-        P c{0, 0, 0};
-        for (size_t i = 0; i < 3; ++i)
-            for (size_t k = 0; k < 3; ++k) c[k] += s[i][k] / 3.0;
-        const P r = lerp(c, s[3], -1.0);
+        if (v[N] - v[0] <= 1e-7 * std::abs(v[0]) + 1e-300) break;
+        P c{};
+        for (size_t i = 0; i < N; ++i)
+            for (size_t k = 0; k < N; ++k) c[k] += s[i][k] / double(N);
+        const P r = lerp(c, s[N], -1.0);
         const double fr = f(r);
         ++evaluations;
         if (fr < v[0]) {
-            const P e = lerp(c, s[3], -2.0);
+            const P e = lerp(c, s[N], -2.0);
             const double fe = f(e);
             ++evaluations;
-            if (fe < fr) s[3] = e, v[3] = fe;
-            else s[3] = r, v[3] = fr;
-        } else if (fr < v[2]) {
-            s[3] = r, v[3] = fr;
+            if (fe < fr) s[N] = e, v[N] = fe;
+            else s[N] = r, v[N] = fr;
+        } else if (fr < v[N - 1]) {
+            s[N] = r, v[N] = fr;
         } else {
-            const P k = fr < v[3] ? lerp(c, s[3], -0.5) : lerp(c, s[3], 0.5);
+            const P k = fr < v[N] ? lerp(c, s[N], -0.5) : lerp(c, s[N], 0.5);
             const double fk = f(k);
             ++evaluations;
-            if (fk < std::min(fr, v[3])) {
-                s[3] = k, v[3] = fk;
+            if (fk < std::min(fr, v[N])) {
+                s[N] = k, v[N] = fk;
             } else {
-                for (size_t i = 1; i < 4; ++i) {
+                for (size_t i = 1; i <= N; ++i) {
                     s[i] = lerp(s[0], s[i], 0.5);
                     v[i] = f(s[i]);
                     ++evaluations;
@@ -81,16 +82,17 @@ std::array<double, 3> nelderMead(Fn&& f, std::array<double, 3> x0, std::array<do
         }
     }
     size_t best = 0;
-    for (size_t i = 1; i < 4; ++i)
+    for (size_t i = 1; i <= N; ++i)
         if (v[i] < v[best]) best = i;
     return s[best];
 }
 
-/// M^-1 (row-major) of (log a, log c, b) about the mean direction Z (in the xz plane).
-std::array<double, 9> inverseOf(const std::array<double, 3>& x, const dvec3& Z) {
-    const double a = std::exp(x[0]), c = std::exp(x[1]), b = x[2];
-    // M = [X Y Z] A, A = [[a, 0, b], [0, c, 0], [0, 0, 1]]: M^-1 = A^-1 [X Y Z]^T, X = (Z.z, 0, -Z.x), Y = (0, 1, 0).
-    return {(Z.z - b * Z.x) / a, 0.0, (-Z.x - b * Z.z) / a, 0.0, 1.0 / c, 0.0, Z.x, 0.0, Z.z};
+/// M^-1 (row-major) of M = [[a, 0, b], [0, c, 0], [d, 0, 1]] in the view's frame, x = (log a, log c, b, d): the
+/// cosine's own horizon may tilt (d) and its peak lean along (b, 0, 1). Empty (all 0) where a - b d <= 0.
+std::array<double, 9> inverseOf4(const std::array<double, 4>& x) {
+    const double a = std::exp(x[0]), c = std::exp(x[1]), b = x[2], d = x[3], D = a - b * d;
+    if (!(D > 0)) return {};
+    return {1.0 / D, 0.0, -b / D, 0.0, 1.0 / c, 0.0, -d / D, 0.0, a / D};
 }
 
 dvec3 mulMat(const std::array<double, 9>& m, const dvec3& v) {
@@ -116,7 +118,7 @@ void fitTable(const brdf::Params& p, LtcTable& t) {
     gaussLegendre(8, gx, gw);
     const double width0 = std::max(1e-4, std::min(0.5 * kPi, brdf::lobeWidth(p)));
     const double uMax = std::sqrt(1.0 - std::cos(deg2rad(kLtcMaxElevationDeg)));
-    std::array<double, 3> x{std::log(width0), std::log(width0), 0.0};
+    std::array<double, 4> x{std::log(width0), std::log(width0), 0.0, 0.0};
     t.minv.assign(kLtcElevations, {}), t.norm.assign(kLtcElevations, dvec3(0.0));
     t.fitError.assign(kLtcElevations, 0.0);
     for (int k = 0; k < kLtcElevations; ++k) {
@@ -128,7 +130,7 @@ void fitTable(const brdf::Params& p, LtcTable& t) {
         const double width = std::max(1e-9, width0 * std::max(cosT, 1e-3));
         const dvec3 e1 = sinT > 0 ? dvec3(q.z, 0.0, -q.x) : dvec3(1, 0, 0), e2(0, 1, 0);
         Grid g;
-        dvec3 norm(0.0), mean(0.0);
+        dvec3 norm(0.0);
         std::vector<dvec3> frgb;
         for (int pp = 0; pp < 16; ++pp)
             for (size_t i = 0; i < gx.size(); ++i) {
@@ -152,15 +154,10 @@ void fitTable(const brdf::Params& p, LtcTable& t) {
             }
         const double lum = brdf::luminance(norm);
         if (!(lum > 0)) throw InputError("light_rule ltc: the BRDF reflects nothing to fit a cosine to");
-        for (size_t i = 0; i < g.F.size(); ++i) {
-            g.F[i] /= lum;
-            mean += g.weight[i] * g.F[i] * g.w[i];
-        }
-        dvec3 Z(mean.x, 0.0, mean.z);
-        Z = glm::length(Z) > 0 ? glm::normalize(Z) : dvec3(0, 0, 1);
-        auto objective = [&](const std::array<double, 3>& y) {
-            const std::array<double, 9> m = inverseOf(y, Z);
+        for (double& F : g.F) F /= lum;
+        auto error3 = [&](const std::array<double, 9>& m) {
             const double det = det3(m);
+            if (!(det > 0)) return 1e300;
             double e = 0;
             for (size_t i = 0; i < g.F.size(); ++i) {
                 const double d = std::abs(density(m, det, g.w[i]) - g.F[i]);
@@ -168,10 +165,14 @@ void fitTable(const brdf::Params& p, LtcTable& t) {
             }
             return e;
         };
+        // From the previous elevation's solution (Nelder-Mead twice: the second restarts the simplex).
+        auto objective = [&](const std::array<double, 4>& y) { return error3(inverseOf4(y)); };
         for (int run = 0; run < 2; ++run)
-            x = nelderMead(objective, x, {0.3, 0.3, 0.1 * std::exp(x[0])}, 200, t.objectiveEvaluations);
-        const std::array<double, 9> m = inverseOf(x, Z);
-        const double c = std::exp(x[1]), det = det3(m);
+            x = nelderMead(objective, x, {0.3, 0.3, 0.1 * std::exp(x[0]) + 0.05 * std::abs(x[2]), 0.1}, 300,
+                           t.objectiveEvaluations);
+        const std::array<double, 9> m = inverseOf4(x);
+        const double c = std::exp(x[1]);
+        const double det = det3(m);
         t.minv[size_t(k)] = {c * m[0], c * m[2], c * m[6], c * m[8]};
         t.norm[size_t(k)] = norm;
         double l1 = 0;
