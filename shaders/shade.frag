@@ -35,6 +35,7 @@ uniform float uCapPower;     // disk: L (1 - cos(delta)) = E / (2 pi cos^2(delta
 // regular polygon of the cap's area (unit circle from double).
 #define HILITE_LTC_ELEVATIONS 32
 #define HILITE_LTC_VERTICES 16
+#define HILITE_LTC_SMALL_CAP 0.01
 uniform vec4 uLtcMinv[HILITE_LTC_ELEVATIONS];
 uniform vec3 uLtcNorm[HILITE_LTC_ELEVATIONS];
 uniform float uLtcGridScale;     // (elevations - 1) / sqrt(1 - cos(89 deg))
@@ -154,6 +155,14 @@ vec3 ltcRadiance(vec3 c, float capU, float capPower, vec3 we) {
     mat3 A = mat3(m.x, 0.0, m.z, 0.0, 1.0, 0.0, m.y, 0.0, m.w) *
              mat3(t1.x, -t1.y, 0.0, t1.y, t1.x, 0.0, 0.0, 0.0, 1.0);  // M^-1 times the view frame's rows
     vec3 C = A * c, Aa = A * a, Ab = A * b;
+    if (t * max(length(Aa), length(Ab)) < HILITE_LTC_SMALL_CAP * length(C)) {
+        // A cap small against the lobe: L x solid angle x D at its centre (twin: render::areaRadianceLtc). The edge
+        // sum cancels to the polygon's area, ~1e-7 / size off in float; this is (size)^2 off, and holds for a
+        // cap whose 1 - cos(alpha) float holds as 0 (capPower stays finite).
+        float l2 = dot(C, C);
+        float D = max(C.z, 0.0) * (m.x * m.w - m.y * m.z) / (3.141592654 * l2 * l2);
+        return (6.283185307 * capPower * D) * norm;
+    }
     float sum = 0.0;
     if (c.z > t * abs(a.z) && C.z > t * length(vec2(Aa.z, Ab.z))) {
         // Every vertex above both horizons (most pixels): no clip, no arrays (llvmpipe keeps them in memory).

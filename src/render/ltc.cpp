@@ -18,6 +18,10 @@ namespace hilite::render {
 
 namespace {
 
+/// Below this angular size of the mapped polygon (its tangent radius over |M^-1 c|), the cap is a point of solid
+/// angle 2 pi (1 - cos(alpha)) at its centre (shade.frag's HILITE_LTC_SMALL_CAP must agree).
+constexpr double kLtcSmallCap = 0.01;
+
 /// The fit's quadrature grid about the mirror direction q: points, weights, the lobe F (unit mass, luminance)
 /// and f cos per channel.
 struct Grid {
@@ -283,7 +287,18 @@ dvec3 areaRadianceLtc(const Scene& s, const dvec3& p, const dvec3& we, int verti
     const std::array<double, 9> minv{m[0], 0.0, m[1], 0.0, 1.0, 0.0, m[2], 0.0, m[3]};
     const double cosA = 1.0 - cap.uMax, sinA = std::sqrt(cap.uMax * (2.0 - cap.uMax));
     const double t = ltcPolygonScale(vertices) * sinA / std::max(cosA, 1e-6);
-    const double I = ltcCapIntegral(local(cap.center), local(cap.a), local(cap.b), t, minv, vertices);
+    const dvec3 c = local(cap.center), C = mulMat(minv, c);
+    const double spread =
+        t * std::max(glm::length(mulMat(minv, local(cap.a))), glm::length(mulMat(minv, local(cap.b))));
+    if (vertices == kLtcVertices && spread < kLtcSmallCap * glm::length(C)) {
+        // A cap small against the lobe (as GL, shade.frag): L x solid angle x D at its centre; the polygon's edge
+        // sum cancels to its area (relative error ~ 1e-7 / size in float), this to (size)^2.
+        const double det = m[0] * m[3] - m[1] * m[2];
+        const double l2 = glm::dot(C, C);
+        const double D = std::max(C.z, 0.0) * det / (kPi * l2 * l2);
+        return (cap.radiance * 2.0 * kPi * cap.uMax * D) * norm;
+    }
+    const double I = ltcCapIntegral(c, local(cap.a), local(cap.b), t, minv, vertices);
     return (cap.radiance * std::max(I, 0.0)) * norm;
 }
 

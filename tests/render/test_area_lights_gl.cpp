@@ -232,7 +232,8 @@ TEST_CASE("measurement::measureGl extreme lights: a disk centred on the horizon,
 
 TEST_CASE("render::Renderer linearly transformed cosines: GL equals its double twin (the framing's) within 1e-3") {
     // Measured: 8.3e-5 (the sun on GGX 0.1 at 60 deg), 6.7e-5 (GGX 0.02 at 80), 3.6e-5 (a sphere), 4.5e-5 (an 8 deg
-    // disk the horizon cuts: the shader's clipped path).
+    // disk the horizon cuts: the shader's clipped path), 2.1e-6 (a 0.01 deg disk and one of 1e-30 deg, drawn as the
+    // lobe at the cap's centre times its solid angle; 1 - cos(1e-30 deg) is 0 in float).
     // Their error against the exact light: tests/render/test_ltc.cpp and docs/speed.md.
     auto& env = test::glEnv();
     struct Case {
@@ -247,6 +248,8 @@ TEST_CASE("render::Renderer linearly transformed cosines: GL equals its double t
         {"GGX 0.02 at 80 deg, the sun", withDisk(ggx(0.02, 80), 0.266)},
         {"GGX 0.1 at 50 deg, sphere R 0.5 at 10", sphere},
         {"GGX 0.1 at 86 deg, an 8 deg disk the horizon cuts (the clipped path)", withDisk(ggx(0.1, 86), 8.0)},
+        {"GGX 0.1 at 60 deg, a 0.01 deg disk (a point of the lobe)", withDisk(ggx(0.1, 60), 0.01)},
+        {"GGX 0.1 at 60 deg, a 1e-30 deg disk (1 - cos is 0 in float)", withDisk(ggx(0.1, 60), 1e-30)},
     };
     for (Case c : cases) {
         CAPTURE(c.what);

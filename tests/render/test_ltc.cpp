@@ -120,11 +120,12 @@ TEST_CASE("render::areaRadianceLtc the fitted cosine against the exact light, an
 TEST_CASE("render::areaRadianceLtc the cap's 16-gon: its own error within 1.5e-3 of the peak, below the LTC's") {
     // Peak-relative luminance error of the polygon against a 512-gon (the same fitted lobe), GGX 0.02: under the
     // sun at 80 deg 1.6e-5 (8-gon 2.6e-4); a 5 deg disk at 60 deg 7.4e-4 (8-gon 1.4e-2); a 20 deg disk at 30 deg
-    // 1.2e-3 (8-gon 1.9e-2). The LTC's own error is 4.1e-3 and more (docs/speed.md).
+    // 1.2e-3 (8-gon 1.9e-2); a 0.02 deg disk at 60 deg, drawn as D at its centre times its solid angle, 1.3e-5.
+    // The LTC's own error is 4.1e-3 and more (docs/speed.md).
     struct Case {
         double incidence, angle;
     };
-    for (Case c : {Case{80, 0.266}, Case{60, 5.0}, Case{30, 20.0}}) {
+    for (Case c : {Case{80, 0.266}, Case{60, 5.0}, Case{30, 20.0}, Case{60, 0.02}}) {
         CAPTURE(c.angle);
         render::Scene s = sunScene(brdf::Model::GGX, 0.02, c.incidence);
         s.light.angleDeg = c.angle;
@@ -144,6 +145,6 @@ TEST_CASE("render::areaRadianceLtc the cap's 16-gon: its own error within 1.5e-3
         MESSAGE("GGX 0.02 at " << c.incidence << " deg, disk " << c.angle << " deg: the " << render::kLtcVertices
                                << "-gon's error " << e / peak << ", the 8-gon's " << e8 / peak);
         CHECK(e < 1.5e-3 * peak);
-        CHECK(e8 > 4 * e);
+        if (c.angle > 0.1) CHECK(e8 > 4 * e);  // 0.02 deg: the small cap's limit (D at the centre), not a polygon
     }
 }

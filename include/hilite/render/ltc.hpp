@@ -55,7 +55,8 @@ double ltcGridCoordinate(double cosTheta);
 
 /// Reflected radiance toward we from the plane point p under the scene's sphere or disk light by LTC (double;
 /// GL computes the same in float).
-/// `vertices`: the cap's polygon (GL draws kLtcVertices; others measure the polygon's own error).
+/// `vertices`: the cap's polygon (GL draws kLtcVertices; others measure the polygon's own error, and never take
+/// the small cap's limit: a cap whose mapped polygon is under 0.01 rad is D at its centre times its solid angle).
 dvec3 areaRadianceLtc(const Scene& s, const dvec3& p, const dvec3& we, int vertices = kLtcVertices);
 /// int_P D_o over a cap's polygon (the cap about unit c with offsets of tangent radius t along the tangent frame
 /// a, b), after M^-1 (row-major 3x3) and both horizon clips: exposed for tests.
