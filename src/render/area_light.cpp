@@ -115,6 +115,34 @@ dvec3 capRule(const LightCap& cap, int n, const std::function<dvec3(const dvec3&
     return sum * (2.0 * kPi / m);
 }
 
+namespace {
+
+/// The lobe's ellipse about q in the tangent plane (e1, e2): -log g at distance `width` toward 0, 45 and 90 deg
+/// is a quadratic form; its long axis (angle theta from e1) and its axis ratio (short / long, in [0.02, 1]).
+/// Only a change of the integration variable rests on it (capExact stays exact whatever it says); a lobe that
+/// does not fall away from q in every direction gets ratio 1.
+struct LobeAxes {
+    double theta = 0, ratio = 1;
+};
+LobeAxes lobeAxes(const dvec3& q, const dvec3& e1, const dvec3& e2, double width,
+                  const std::function<dvec3(const dvec3&)>& g) {
+    LobeAxes axes;
+    const double g0 = quadratureNorm(g(q));
+    auto fall = [&](double psi) {
+        const dvec3 w = std::cos(width) * q + std::sin(width) * (std::cos(psi) * e1 + std::sin(psi) * e2);
+        const double v = quadratureNorm(g(w));
+        return v > 0 && g0 > v ? std::log(g0 / v) : 0.0;
+    };
+    const double A = fall(0.0), C = fall(0.5 * kPi), B = fall(0.25 * kPi) - 0.5 * (A + C);
+    const double mean = 0.5 * (A + C), spread = std::hypot(0.5 * (A - C), B);
+    if (!(A > 0 && C > 0 && mean - spread > 0)) return axes;
+    axes.ratio = std::clamp(std::sqrt((mean - spread) / (mean + spread)), 0.02, 1.0);
+    axes.theta = 0.5 * std::atan2(2.0 * B, A - C) + 0.5 * kPi;  // the direction of the smallest fall
+    return axes;
+}
+
+}  // namespace
+
 CapIntegral capExact(const LightCap& cap, const dvec3& q, double width, const std::function<dvec3(const dvec3&)>& g) {
     CapIntegral out;
     const dvec3& c = cap.center;
@@ -127,8 +155,16 @@ CapIntegral capExact(const LightCap& cap, const dvec3& q, double width, const st
     // the relative tolerances alone decide).
     const double scale = quadratureNorm(capRule(cap, 4, g));
     const double relTol = kExactTolerance;
+    auto add = [&](const QuadratureResult<dvec3>& r) {
+        out.evaluations += r.evaluations;
+        out.converged = out.converged && r.converged;
+        return r.value;
+    };
 
     // The ray from q towards e: w(rho) = cos(rho) q + sin(rho) e, dw = sin(rho) drho dpsi.
+    // rho = b (e^s - 1), b half the lobe's width: its peak at rho = 0 and its tail are both smooth in s (b = width / 8:
+    // 18% more evaluations for the same values).
+    const double b = width / 2;
     auto ray = [&](double psi) -> dvec3 {
         const dvec3 e = std::cos(psi) * e1 + std::sin(psi) * e2;
         // Its great circle passes the cap's centre at angle d (sin d = |c . (q x e)|), nearest at rho_c; it runs
@@ -142,47 +178,58 @@ CapIntegral capExact(const LightCap& cap, const dvec3& q, double width, const st
         const double rhoC = std::atan2(glm::dot(c, e), glm::dot(c, q));
         // The horizon: w.z = q.z cos(rho) + e.z sin(rho) > 0 up to atan2(e.z, q.z) + pi/2 (q.z > 0).
         const double rhoHorizon = std::atan2(e.z, q.z) + 0.5 * kPi;
+        auto f = [&](double sv) -> dvec3 {
+            const double rho = b * std::expm1(sv);
+            const dvec3 w = std::cos(rho) * q + std::sin(rho) * e;
+            return ((rho + b) * std::sin(rho)) * g(w);
+        };
         dvec3 sum(0.0);
         for (double shift : {-2.0 * kPi, 0.0, 2.0 * kPi}) {
             const double r1 = std::max(0.0, rhoC - h + shift), r2 = std::min({kPi, rhoC + h + shift, rhoHorizon});
             if (!(r2 > r1)) continue;
-            auto f = [&](double rho) -> dvec3 {
-                const dvec3 w = std::cos(rho) * q + std::sin(rho) * e;
-                return std::sin(rho) * g(w);
-            };
-            // Panels graded about the lobe's centre (rho = 0) on its scale, as brdf::integrateGraded.
-            std::vector<double> edges{r1};
-            for (double x = width / 8; x < r2; x *= 2)
-                if (x > r1) edges.push_back(x);
-            edges.push_back(r2);
-            for (size_t k = 0; k + 1 < edges.size(); ++k) {
-                const auto r = integrateAdaptive<dvec3>(f, edges[k], edges[k + 1], relTol, 1e-3 * relTol * scale);
-                sum += r.value;
-                out.evaluations += r.evaluations;
-                out.converged = out.converged && r.converged;
-            }
+            // Panels at most 2 long in s (a factor e^2 in rho + b), so the analytic error model holds on each.
+            const double s1 = std::log1p(r1 / b), sEnd = std::log1p(r2 / b);
+            const int panels = std::max(1, int(std::ceil((sEnd - s1) / 2.0)));
+            for (int k = 0; k < panels; ++k)
+                sum +=
+                    add(integrateAdaptive<dvec3>(f, s1 + (sEnd - s1) * k / panels, s1 + (sEnd - s1) * (k + 1) / panels,
+                                                 relTol, 0.1 * relTol * scale, 256, PanelError::Analytic));
         }
         return sum;
     };
+    // The rays' angle psi = theta + atan2(ratio sin(chi), cos(chi)): uniform in chi, the rays crowd along the
+    // lobe's long axis, where a lobe narrowed by cos(theta_i) (a microfacet lobe at grazing incidence) reaches
+    // furthest; its share of each ray's integral becomes even in chi. ray() is 2 pi periodic in psi, so the
+    // jump of atan2 at chi = pi does not matter.
+    const LobeAxes axes = lobeAxes(q, e1, e2, width, g);
+    out.evaluations += 4;
+    const double ratio = axes.ratio;
+    auto psiOf = [&](double chi) { return axes.theta + std::atan2(ratio * std::sin(chi), std::cos(chi)); };
+    auto chiOf = [&](double psi) { return std::atan2(std::sin(psi - axes.theta) / ratio, std::cos(psi - axes.theta)); };
+    auto inChi = [&](double chi) -> dvec3 {
+        const double cc = std::cos(chi), ss = std::sin(chi);
+        return (ratio / (cc * cc + ratio * ratio * ss * ss)) * ray(psiOf(chi));  // dpsi / dchi
+    };
     const double sinDq = glm::length(glm::cross(q, c)), D = std::atan2(sinDq, glm::dot(q, c));
-    if (D < alpha) {  // q inside the cap: every ray leaves it once, a smooth periodic integrand in psi
-        for (int k = 0; k < 4; ++k) {
-            const auto r = integrateAdaptive<dvec3>(ray, 0.5 * kPi * k, 0.5 * kPi * (k + 1), relTol, relTol * scale);
-            out.value += r.value;
-            out.evaluations += r.evaluations;
-            out.converged = out.converged && r.converged;
-        }
+    // The outer integral keeps the bound G7's error gives: a ray's integral can change sharply in chi (where q lies
+    // just inside the cap's edge, the rays toward it end within the lobe), and the analytic model, trusted there,
+    // accepted panels 1e-4 off (GGX 0.02 + Smith under a 5 deg disk at 80 deg, at 1 of 2048 contour rays).
+    if (D < alpha) {  // q inside the cap: every ray leaves it once, a smooth periodic integrand in chi
+        for (int k = 0; k < 4; ++k)
+            out.value +=
+                add(integrateAdaptive<dvec3>(inChi, 0.5 * kPi * k, 0.5 * kPi * (k + 1), relTol, relTol * scale));
         return out;
     }
     // q outside: the rays that meet the cap fill psi_c +- Delta, sin(Delta) = sin(alpha) / sin(D) (the tangent rays);
-    // psi = psi_c + Delta sin(t) turns the chord's square-root ends into smooth ones.
+    // chi = chi_m + chi_h sin(t) over that range turns the chord's square-root ends into smooth ones.
     const double psiC = std::atan2(glm::dot(c, e2), glm::dot(c, e1));
     const double delta = std::asin(std::min(1.0, sinAlpha / std::sin(D)));
-    auto inT = [&](double t) -> dvec3 { return (delta * std::cos(t)) * ray(psiC + delta * std::sin(t)); };
-    const auto r = integrateAdaptive<dvec3>(inT, -0.5 * kPi, 0.5 * kPi, relTol, relTol * scale);
-    out.value = r.value;
-    out.evaluations += r.evaluations;
-    out.converged = out.converged && r.converged;
+    const double chi1 = chiOf(psiC - delta);
+    double span = chiOf(psiC + delta) - chi1;  // the map is increasing: the range's length in chi, in (0, 2 pi)
+    if (span <= 0) span += 2.0 * kPi;
+    const double chiM = chi1 + 0.5 * span, chiH = 0.5 * span;
+    auto inT = [&](double t) -> dvec3 { return (chiH * std::cos(t)) * inChi(chiM + chiH * std::sin(t)); };
+    out.value = add(integrateAdaptive<dvec3>(inT, -0.5 * kPi, 0.5 * kPi, relTol, relTol * scale));
     return out;
 }
 
