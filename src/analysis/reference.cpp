@@ -7,6 +7,7 @@
 
 #include "hilite/analysis/highlight.hpp"
 
+#include "core/parallel.hpp"
 #include "hilite/core/error.hpp"
 #include "hilite/core/math.hpp"
 
@@ -57,9 +58,11 @@ struct CoarseGrid {
 
 CoarseGrid coarseGrid(const LobeFunction& f, dvec2 hint, double radius) {
     CoarseGrid g{hint, radius, 2.0 * radius / kCoarseGrid, {}};
-    g.values.reserve(size_t(kCoarseGrid) * kCoarseGrid);
-    for (int j = 0; j < kCoarseGrid; ++j)
-        for (int i = 0; i < kCoarseGrid; ++i) g.values.push_back(searchValue(f, g.at(i, j), hint, radius));
+    g.values.resize(size_t(kCoarseGrid) * kCoarseGrid);
+    parallelFor(kCoarseGrid, [&](int j) {
+        for (int i = 0; i < kCoarseGrid; ++i)
+            g.values[size_t(j * kCoarseGrid + i)] = searchValue(f, g.at(i, j), hint, radius);
+    });
     return g;
 }
 
@@ -80,12 +83,16 @@ Candidate refinePeak(const LobeFunction& f, Candidate best, double h, dvec2 hint
     for (int iter = 0; iter < 1000 && h > kPeakStep; ++iter) {
         Candidate next = best;
         bool onRim = false;
+        double values[25];  // the pattern's points evaluated in parallel, then compared in order as before
+        parallelFor(25, [&](int k) {
+            const int i = k % 5 - 2, j = k / 5 - 2;
+            values[k] = (i || j) ? searchValue(f, best.q + h * dvec2(i, j), hint, radius) : -1.0;
+        });
         for (int j = -2; j <= 2; ++j) {
             for (int i = -2; i <= 2; ++i) {
-                const dvec2 q = best.q + h * dvec2(i, j);
-                const double L = (i || j) ? searchValue(f, q, hint, radius) : -1.0;
+                const double L = values[(j + 2) * 5 + i + 2];
                 if (L > next.L) {
-                    next = {q, L};
+                    next = {best.q + h * dvec2(i, j), L};
                     onRim = std::abs(i) == 2 || std::abs(j) == 2;
                 }
             }
@@ -218,19 +225,21 @@ bool beyondContour(const CoarseGrid& g, const std::vector<double>& r, dvec2 p, d
 /// rays are sampled at 64 points from just past their boundary to where they leave the visible chart. With the
 /// grid of beyondContour (inside the search disc) this is the test that makes the polar contour a proven fast path.
 bool raysReenter(const LobeFunction& f, const std::vector<double>& r, dvec2 p, double T) {
-    const int K = int(r.size());
-    for (int k = 0; k < K; k += std::max(1, K / kReentryRays)) {
+    const int K = int(r.size()), stride = std::max(1, K / kReentryRays), rays = (K + stride - 1) / stride;
+    std::vector<char> reenters(size_t(rays), 0);
+    parallelFor(rays, [&](int n) {
+        const int k = n * stride;
         const double phi = 2.0 * kPi * k / K;
         const dvec2 dir(std::cos(phi), std::sin(phi));
         const Ray ray{f, p, dir, T};
         double end = 1.01 * r[size_t(k)] + 1e-9;
         while (end < 2.0 * kPi && ray.visible(end * 1.25)) end *= 1.25;
-        for (int i = 1; i <= 64; ++i) {
+        for (int i = 1; i <= 64 && !reenters[size_t(n)]; ++i) {
             const double t = 1.01 * r[size_t(k)] + 1e-9 + (end * 1.25 - 1.01 * r[size_t(k)]) * i / 64.0;
-            if (ray.in(t)) return true;
+            reenters[size_t(n)] = ray.in(t);
         }
-    }
-    return false;
+    });
+    return std::any_of(reenters.begin(), reenters.end(), [](char c) { return c != 0; });
 }
 
 }  // namespace
@@ -256,28 +265,36 @@ Shape measureReference(const LobeFunction& f, const Options& opt, double searchR
         return findBoundary({f, peak.q, {std::cos(phi), std::sin(phi)}, T}, std::max(guess, 1e-6 * searchRadius),
                             firstStep);
     };
+    // The first rays in kChains runs, each ray started from the one before it in its run: the runs in parallel,
+    // the same rays whatever the number of threads.
     std::vector<double> r(kFirstAngles);
-    bool cut = false;
-    double guess = 1e-3 * searchRadius;
-    for (int k = 0; k < kFirstAngles; ++k) {
-        const Boundary b = boundary(k, kFirstAngles, guess);
-        r[size_t(k)] = guess = b.r;
-        cut = cut || b.horizon;
-    }
+    std::vector<char> horizon(kFirstAngles, 0);
+    constexpr int kChains = 8, kChain = kFirstAngles / kChains;
+    parallelFor(kChains, [&](int c) {
+        double guess = 1e-3 * searchRadius;
+        for (int k = c * kChain; k < (c + 1) * kChain; ++k) {
+            const Boundary b = boundary(k, kFirstAngles, guess);
+            r[size_t(k)] = guess = b.r;
+            horizon[size_t(k)] = b.horizon;
+        }
+    });
+    bool cut = std::any_of(horizon.begin(), horizon.end(), [](char c) { return c != 0; });
     AreaMoments moments = polarMoments(r, peak.q);
     // Doubling: the new rays bisect the old ones' angles, each started from its neighbour's radius. A smooth
     // contour settles at 256-512 rays; a kink where the horizon cuts it never does (2048, second order).
     while (int(r.size()) < kContourAngles) {
         const int K = 2 * int(r.size());
         std::vector<double> finer(static_cast<size_t>(K));
-        for (int k = 0; k < K; k += 2) {
-            finer[size_t(k)] = r[size_t(k / 2)];
+        std::vector<char> cuts(size_t(K / 2), 0);
+        parallelFor(K / 2, [&](int n) {
             // Started from the mean of its neighbours (within ~1e-4 on a smooth contour) with a bracket 1e-3 wide.
-            const double between = 0.5 * (r[size_t(k / 2)] + r[size_t((k / 2 + 1) % (K / 2))]);
-            const Boundary b = boundary(k + 1, K, between, 1.001);
-            finer[size_t(k + 1)] = b.r;
-            cut = cut || b.horizon;
-        }
+            const double between = 0.5 * (r[size_t(n)] + r[size_t((n + 1) % (K / 2))]);
+            const Boundary b = boundary(2 * n + 1, K, between, 1.001);
+            finer[size_t(2 * n)] = r[size_t(n)];
+            finer[size_t(2 * n + 1)] = b.r;
+            cuts[size_t(n)] = b.horizon;
+        });
+        cut = cut || std::any_of(cuts.begin(), cuts.end(), [](char c) { return c != 0; });
         r.swap(finer);
         const AreaMoments next = polarMoments(r, peak.q);
         const double spread = next.cuu + next.cvv;
