@@ -5,6 +5,7 @@
 // a smooth periodic r(phi): the rays double from 128 until the moments agree to 1e-12; second order where the
 // horizon puts a kink in the contour: then 2048 rays, as always before).
 
+#include "analysis/lobe_bounds.hpp"
 #include "hilite/analysis/highlight.hpp"
 
 #include "core/parallel.hpp"
@@ -48,30 +49,40 @@ double searchValue(const LobeFunction& f, dvec2 q, dvec2 hint, double radius) {
 }
 
 /// The kCoarseGrid^2 cell centres over the search disc and searchValue at each (the peak search's start and
-/// the star-shape check's points).
+/// the star-shape check's points), or an enclosure [lo, hi] of it where LobeBounds gives one.
 struct CoarseGrid {
     dvec2 hint;
     double radius, cell;
-    std::vector<double> values;  ///< row by row
+    std::vector<double> lo, hi;  ///< row by row; lo == hi: the value itself
     dvec2 at(int i, int j) const { return hint + dvec2(-radius + (i + 0.5) * cell, -radius + (j + 0.5) * cell); }
 };
 
-CoarseGrid coarseGrid(const LobeFunction& f, dvec2 hint, double radius) {
-    CoarseGrid g{hint, radius, 2.0 * radius / kCoarseGrid, {}};
-    g.values.resize(size_t(kCoarseGrid) * kCoarseGrid);
+CoarseGrid coarseGrid(const LobeFunction& f, const LobeBounds& bounds, dvec2 hint, double radius) {
+    CoarseGrid g{hint, radius, 2.0 * radius / kCoarseGrid, {}, {}};
+    g.lo.resize(size_t(kCoarseGrid) * kCoarseGrid);
+    g.hi.resize(g.lo.size());
     parallelFor(kCoarseGrid, [&](int j) {
-        for (int i = 0; i < kCoarseGrid; ++i)
-            g.values[size_t(j * kCoarseGrid + i)] = searchValue(f, g.at(i, j), hint, radius);
+        for (int i = 0; i < kCoarseGrid; ++i) {
+            const size_t n = size_t(j * kCoarseGrid + i);
+            const dvec2 q = g.at(i, j);
+            const bool searched = glm::length(q - hint) <= radius && inChart(q) && f.visible(q.x, q.y);
+            if (!(searched && bounds && bounds(q.x, q.y, g.lo[n], g.hi[n])))
+                g.lo[n] = g.hi[n] = searchValue(f, q, hint, radius);
+        }
     });
     return g;
 }
 
-/// Best point of the grid, and the hint itself.
+/// Best point of the grid, and the hint itself; an enclosed point that might beat the best so far is evaluated.
 Candidate coarsePeak(const LobeFunction& f, const CoarseGrid& g) {
     Candidate best{g.hint, searchValue(f, g.hint, g.hint, g.radius)};
     for (int j = 0; j < kCoarseGrid; ++j)
-        for (int i = 0; i < kCoarseGrid; ++i)
-            if (const double L = g.values[size_t(j * kCoarseGrid + i)]; L > best.L) best = {g.at(i, j), L};
+        for (int i = 0; i < kCoarseGrid; ++i) {
+            const size_t n = size_t(j * kCoarseGrid + i);
+            if (!(g.hi[n] > best.L)) continue;
+            const double L = g.lo[n] == g.hi[n] ? g.hi[n] : searchValue(f, g.at(i, j), g.hint, g.radius);
+            if (L > best.L) best = {g.at(i, j), L};
+        }
     return best;
 }
 
@@ -120,6 +131,14 @@ struct Ray {
         return visible(r) ? f.lobe(q.x, q.y) - T : -T;
     }
     bool in(double r) const { return value(r) >= 0; }
+    /// in(r), decided by the enclosure where it lies wholly on one side of T.
+    bool inEnclosed(double r, const LobeBounds& bounds) const {
+        if (!visible(r)) return false;
+        const dvec2 q = at(r);
+        double lo = 0, hi = 0;
+        if (bounds && bounds(q.x, q.y, lo, hi) && (hi < T || lo >= T)) return lo >= T;
+        return f.lobe(q.x, q.y) >= T;
+    }
 };
 
 struct Boundary {
@@ -205,12 +224,14 @@ AreaMoments polarMoments(const std::vector<double>& r, dvec2 p) {
 /// Whether a point of the coarse grid over the search disc is in the region yet beyond the contour r(phi)
 /// seen from the peak p (with 0.1% to spare for the chord between rays): then the region is not star-shaped
 /// about p (a ring, two lobes) and the polar moments silently miss part of it.
-bool beyondContour(const CoarseGrid& g, const std::vector<double>& r, dvec2 p, double T) {
+bool beyondContour(const LobeFunction& f, const CoarseGrid& g, const std::vector<double>& r, dvec2 p, double T) {
     const int K = int(r.size());
     for (int j = 0; j < kCoarseGrid; ++j) {
         for (int i = 0; i < kCoarseGrid; ++i) {
             const dvec2 q = g.at(i, j);
-            if (g.values[size_t(j * kCoarseGrid + i)] < T) continue;
+            const size_t n = size_t(j * kCoarseGrid + i);
+            if (g.hi[n] < T) continue;
+            if (g.lo[n] < T && g.lo[n] != g.hi[n] && searchValue(f, q, g.hint, g.radius) < T) continue;
             const dvec2 d = q - p;
             const double x = std::atan2(d.y, d.x) / (2.0 * kPi) * K;
             const int k0 = int(std::floor(x));
@@ -224,7 +245,7 @@ bool beyondContour(const CoarseGrid& g, const std::vector<double>& r, dvec2 p, d
 /// Whether some ray from the peak comes back into the region after leaving it: kReentryRays of the contour's
 /// rays are sampled at 64 points from just past their boundary to where they leave the visible chart. With the
 /// grid of beyondContour (inside the search disc) this is the test that makes the polar contour a proven fast path.
-bool raysReenter(const LobeFunction& f, const std::vector<double>& r, dvec2 p, double T) {
+bool raysReenter(const LobeFunction& f, const LobeBounds& bounds, const std::vector<double>& r, dvec2 p, double T) {
     const int K = int(r.size()), stride = std::max(1, K / kReentryRays), rays = (K + stride - 1) / stride;
     std::vector<char> reenters(size_t(rays), 0);
     parallelFor(rays, [&](int n) {
@@ -236,7 +257,7 @@ bool raysReenter(const LobeFunction& f, const std::vector<double>& r, dvec2 p, d
         while (end < 2.0 * kPi && ray.visible(end * 1.25)) end *= 1.25;
         for (int i = 1; i <= 64 && !reenters[size_t(n)]; ++i) {
             const double t = 1.01 * r[size_t(k)] + 1e-9 + (end * 1.25 - 1.01 * r[size_t(k)]) * i / 64.0;
-            reenters[size_t(n)] = ray.in(t);
+            reenters[size_t(n)] = ray.inEnclosed(t, bounds);
         }
     });
     return std::any_of(reenters.begin(), reenters.end(), [](char c) { return c != 0; });
@@ -245,13 +266,18 @@ bool raysReenter(const LobeFunction& f, const std::vector<double>& r, dvec2 p, d
 }  // namespace
 
 Shape measureReference(const LobeFunction& f, const Options& opt, double searchRadius, double hint_u, double hint_v) {
+    return measureReference(f, LobeBounds{}, opt, searchRadius, hint_u, hint_v);
+}
+
+Shape measureReference(const LobeFunction& f, const LobeBounds& bounds, const Options& opt, double searchRadius,
+                       double hint_u, double hint_v) {
     validate(opt);
     if (!f.lobe || !f.visible) throw InputError("measureReference: lobe and visible must both be set");
     if (!(searchRadius > 0.0)) throw InputError("measureReference: searchRadius must be > 0");
     const dvec2 hint(hint_u, hint_v);
     Shape s;
     s.minor_pixels = std::numeric_limits<double>::infinity();
-    const CoarseGrid grid = coarseGrid(f, hint, searchRadius);
+    const CoarseGrid grid = coarseGrid(f, bounds, hint, searchRadius);
     Candidate peak = coarsePeak(f, grid);
     if (!(peak.L > 0.0)) {
         s.flags.insert(Flag::NoHighlight);
@@ -314,7 +340,8 @@ Shape measureReference(const LobeFunction& f, const Options& opt, double searchR
     s.fwhm_u_deg = rad2deg(r[0] + r[K / 2]);
     s.fwhm_v_deg = rad2deg(r[K / 4] + r[3 * K / 4]);
     if (cut) s.flags.insert(Flag::HorizonCut);
-    if (beyondContour(grid, r, peak.q, T) || raysReenter(f, r, peak.q, T)) s.flags.insert(Flag::NotStarShaped);
+    if (beyondContour(f, grid, r, peak.q, T) || raysReenter(f, bounds, r, peak.q, T))
+        s.flags.insert(Flag::NotStarShaped);
     return s;
 }
 

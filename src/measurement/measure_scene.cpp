@@ -1,8 +1,10 @@
 #include "hilite/measurement/measure_scene.hpp"
+#include "render/area_bounds.hpp"
 #include "render/renderer.hpp"
 
 #include "measurement/measure_bumps.hpp"
 
+#include "analysis/lobe_bounds.hpp"
 #include "analysis/supersample.hpp"
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/core/error.hpp"
@@ -701,6 +703,23 @@ Measurement measureMirrorReference(const render::Scene& scene, const analysis::O
 
 }  // namespace
 
+namespace {
+
+/// The twin's cheap enclosure under a light with size integrated exactly (render/area_bounds.hpp); none otherwise.
+analysis::LobeBounds twinBounds(const render::Scene& scene) {
+    if (!scene.light.area() || scene.light.twinRings > 0) return {};
+    const auto copy = std::make_shared<const render::Scene>(scene);
+    const MirrorChart chart = scene.light.chart();
+    const dvec3 eye = render::eyePosition(scene);
+    return [copy, chart, eye](double u, double v, double& lo, double& hi) {
+        const dvec3 we = chart.direction(u, v);
+        if (we.z <= 0.0) return false;
+        return render::areaLuminanceBounds(*copy, eye - (eye.z / we.z) * we, we, lo, hi);  // surfaceRadiance's point
+    };
+}
+
+}  // namespace
+
 Measurement measureReference(const render::Scene& scene, const analysis::Options& options) {
     render::requireTwin(scene, "--reference");
     if (options.lobe == analysis::Lobe::Mirror) return measureMirrorReference(scene, options);
@@ -717,7 +736,8 @@ Measurement measureReference(const render::Scene& scene, const analysis::Options
         // Else the scan lines (~0.1-1 s), which assume nothing.
         bool polar = survey.parts.size() == 1 && !survey.parts[0].horizon && !survey.peakOnHorizon;
         if (polar) {
-            m.shape = analysis::measureReference(f, options, radius, survey.peakUV.x, survey.peakUV.y);
+            m.shape =
+                analysis::measureReference(f, twinBounds(scene), options, radius, survey.peakUV.x, survey.peakUV.y);
             polar = m.shape.peak >= survey.peak * (1.0 - 1e-9) && !m.shape.has(analysis::Flag::NotStarShaped) &&
                     !m.shape.has(analysis::Flag::HorizonCut);
         }

@@ -1,4 +1,5 @@
 #include "hilite/render/area_light.hpp"
+#include "render/area_bounds.hpp"
 
 #include "brdf/integrate.hpp"
 #include "core/quadrature.hpp"
@@ -328,6 +329,24 @@ dvec3 areaRadianceExact(const Scene& s, const dvec3& p, const dvec3& we) {
         if (cap.center.z < std::sin(cap.halfAngle)) return capCentred(cap, g).value;
     }
     return capExact(cap, q, width, g).value;
+}
+
+bool areaLuminanceBounds(const Scene& s, const dvec3& p, const dvec3& we, double& lo, double& hi) {
+    checkRadianceQuery(s, p, we, "areaLuminanceBounds");
+    const LightCap cap = lightCap(s.light, p);
+    const dvec3 q = lobeCentre(s.brdf, we);
+    const double width = lobeScale(s.brdf, q);
+    const double distance = std::atan2(glm::length(glm::cross(q, cap.center)), glm::dot(q, cap.center));
+    // The far tail only (areaRadianceExact's own test for where the rule cannot miss a spike), uncut by the horizon.
+    if (!(distance - cap.halfAngle > 4.0 * width) || cap.center.z < std::sin(cap.halfAngle)) return false;
+    auto g = [&](const dvec3& wi) { return wi.z > 0 ? brdf::radiance(s.brdf, wi, we, cap.radiance) : dvec3(0.0); };
+    const double coarse = brdf::luminance(capRule(cap, 4, g)), fine = brdf::luminance(capRule(cap, 8, g));
+    // Only a rule in its asymptotic regime (4 and 8 rings within 10%): where they differ by more, both may be far
+    // off alike (a tail steep across a large cap), and 4x their difference is no bound.
+    if (!(std::abs(fine - coarse) <= 0.1 * std::abs(fine))) return false;
+    const double margin = 4.0 * std::abs(fine - coarse) + 1e-6 * std::abs(fine);
+    lo = fine - margin, hi = fine + margin;
+    return std::isfinite(lo) && std::isfinite(hi);
 }
 
 dvec3 areaRadianceRule(const Scene& s, const dvec3& p, const dvec3& we, int rings) {
