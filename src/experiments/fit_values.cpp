@@ -1,12 +1,12 @@
 #include "experiments/fit_values.hpp"
 
 #include "brdf/merl.hpp"
+#include "core/parallel.hpp"
 #include "hilite/brdf/evaluate.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace hilite::experiments::values {
 
@@ -35,21 +35,16 @@ Directions grid(bool anisotropic) {
 
 std::vector<double> sample(const brdf::Params& p, const Directions& d, int channel) {
     std::vector<double> out(d.wi.size());
-    auto run = [&](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k) {
+    // Every core: a values fit evaluates the grid a few hundred times while nothing else runs. Blocks of 256
+    // directions, so that a thread's items are contiguous in memory.
+    const int blocks = int((out.size() + 255) / 256);
+    parallelFor(blocks, [&](int b) {
+        for (size_t k = size_t(b) * 256; k < std::min(out.size(), size_t(b + 1) * 256); ++k) {
             const dvec3 rgb = brdf::evaluate(p, d.wi[k], d.wo[k]);
             const double f = channel < 0 ? brdf::luminance(rgb) : rgb[channel];
             out[k] = std::isfinite(f) && f >= 0 ? d.wi[k].z * f : std::numeric_limits<double>::quiet_NaN();
         }
-    };
-    // Every core: a values fit evaluates the grid a few hundred times while nothing else runs.
-    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 16);
-    const size_t chunk = (out.size() + threads - 1) / threads;
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads && t * chunk < out.size(); ++t)
-        pool.emplace_back(run, t * chunk, std::min(out.size(), (t + 1) * chunk));
-    run(0, std::min(out.size(), chunk));
-    for (std::thread& t : pool) t.join();
+    });
     return out;
 }
 

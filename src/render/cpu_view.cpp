@@ -1,5 +1,7 @@
 #include "render/cpu_view.hpp"
 
+#include "core/parallel.hpp"
+
 #include "hilite/brdf/evaluate.hpp"
 #include "hilite/render/area_light.hpp"
 #include "hilite/render/ltc.hpp"
@@ -52,16 +54,14 @@ void renderMeasureCpu(const Scene& scene, const PinholeCamera& camera, ImageF& i
     int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
     // Below ~16 rows per thread, starting a thread costs more than its rows (~50 us).
     n = std::clamp(r.height / 16, 1, n);
-    auto rows = [&](int first) {
-        for (int row = first; row < r.height; row += n)  // interleaved rows: the lobe's cost is uneven
+    parallelFor(  // interleaved rows: the lobe's cost is uneven
+        r.height,
+        [&](int row) {
             for (int col = 0; col < r.width; ++col)
                 measurePixelCpu(scene, camera, chart, r.x + col + 0.5 + jitter.x, r.y + row + 0.5 + jitter.y,
                                 image.pixel(col, row), rings);
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < n; ++t) pool.emplace_back(rows, t);
-    rows(0);
-    for (auto& t : pool) t.join();
+        },
+        n);
 }
 
 }  // namespace hilite::render
