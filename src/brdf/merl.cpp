@@ -123,18 +123,32 @@ struct Gathered {
     double weight = 0;
 };
 
-Gathered gather(const MeasuredBrdf& m, double thetaH, double thetaD, double phiD, Interpolation how) {
-    const double uh = thetaHalfCoord(thetaH), ud = thetaDiffCoord(thetaD), up = phiDiffCoord(phiD);
+/// A lookup's coordinates and weights, found once for any number of tables (evaluateShared).
+struct Coords {
+    double uh, ud, up;
+    AxisWeights d, p;
+    CubicWeights h;
+};
+
+Coords coordsOf(double thetaH, double thetaD, double phiD) {
+    Coords c;
+    c.uh = thetaHalfCoord(thetaH), c.ud = thetaDiffCoord(thetaD), c.up = phiDiffCoord(phiD);
+    c.d = axisWeights(c.ud, kThetaDBins, false), c.p = axisWeights(c.up, kPhiDBins, true);
+    c.h = cubicWeights(c.uh, kThetaHBins);
+    return c;
+}
+
+Gathered gatherFrom(const MeasuredBrdf& m, const Coords& at, Interpolation how) {
     Gathered g;
     if (how == Interpolation::Nearest) {
         const std::size_t i =
-            flatIndex(nearestBin(uh, kThetaHBins), nearestBin(ud, kThetaDBins), nearestBin(up, kPhiDBins));
+            flatIndex(nearestBin(at.uh, kThetaHBins), nearestBin(at.ud, kThetaDBins), nearestBin(at.up, kPhiDBins));
         if (m.hasData(i)) g = {m.bin(i), 1.0};
         return g;
     }
-    const AxisWeights d = axisWeights(ud, kThetaDBins, false), p = axisWeights(up, kPhiDBins, true);
+    const AxisWeights &d = at.d, &p = at.p;
     if (how == Interpolation::Cubic) {
-        const CubicWeights h = cubicWeights(uh, kThetaHBins);
+        const CubicWeights& h = at.h;
         bool complete = true;
         for (int a = 0; a < 4 && complete; ++a)
             for (int b = 0; b < 2 && complete; ++b)
@@ -155,7 +169,7 @@ Gathered gather(const MeasuredBrdf& m, double thetaH, double thetaD, double phiD
         }
         g = Gathered{};  // a bin without data among the 16: the multilinear lookup's renormalized corners
     }
-    const AxisWeights h = axisWeights(uh, kThetaHBins, false);
+    const AxisWeights h = axisWeights(at.uh, kThetaHBins, false);
     for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b)
             for (int c = 0; c < 2; ++c) {
@@ -169,13 +183,18 @@ Gathered gather(const MeasuredBrdf& m, double thetaH, double thetaD, double phiD
     return g;
 }
 
+Gathered gather(const MeasuredBrdf& m, double thetaH, double thetaD, double phiD, Interpolation how) {
+    return gatherFrom(m, coordsOf(thetaH, thetaD, phiD), how);
+}
+
+/// Renormalized over the bins with data: near the measured region's edge the value is the data's, not pulled
+/// toward 0 by bins that were never measured.
+dvec3 valueOf(const Gathered& g) { return g.weight > 0 ? g.sum / g.weight : dvec3(0.0); }
+
 }  // namespace
 
 dvec3 MeasuredBrdf::lookup(double thetaH, double thetaD, double phiD, Interpolation how) const {
-    const Gathered g = gather(*this, thetaH, thetaD, phiD, how);
-    // Renormalized over the bins with data: near the measured region's edge the value is the data's, not
-    // pulled toward 0 by bins that were never measured.
-    return g.weight > 0 ? g.sum / g.weight : dvec3(0.0);
+    return valueOf(gather(*this, thetaH, thetaD, phiD, how));
 }
 
 double MeasuredBrdf::coverage(double thetaH, double thetaD, double phiD, Interpolation how) const {
@@ -387,6 +406,16 @@ std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const M
     else halveAxis(*half, std::size_t(kPhiDBins) * kThetaDBins, kThetaHBins, false, true, parity);
     cache.push_back({table, axis, parity, half});
     return half;
+}
+
+void evaluateShared(const MeasuredBrdf* const* tables, std::size_t n, const dvec3& wi, const dvec3& wo, dvec3* out) {
+    if (wi.z <= 0.0 || wo.z <= 0.0) {
+        std::fill(out, out + n, dvec3(0.0));
+        return;
+    }
+    const HalfDiff a = toHalfDiff(wi, wo);
+    const Coords at = coordsOf(a.thetaH, a.thetaD, a.phiD);
+    for (std::size_t k = 0; k < n; ++k) out[k] = valueOf(gatherFrom(*tables[k], at, Interpolation::Cubic));
 }
 
 std::string encode(const MeasuredBrdf& table) {

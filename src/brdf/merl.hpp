@@ -148,6 +148,11 @@ Held tablesHeld(bool resetPeak = false);
 std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const MeasuredBrdf>& table, int axis,
                                                    int parity);
 
+/// evaluate(wi, wo) of n tables at once (out[k] for tables[k], bit for bit), the coordinates and weights found
+/// once: for table_error's halves at a pixel (measurement/in_frame_twin.cpp), where finding them was most of a
+/// lookup.
+void evaluateShared(const MeasuredBrdf* const* tables, std::size_t n, const dvec3& wi, const dvec3& wo, dvec3* out);
+
 /// The bytes of a MERL file holding `table` (header 90, 90, 180 and its raw entries, little-endian): the
 /// caller writes them (atomically, io::writeFileAtomic; brdf depends on core only).
 std::string encode(const MeasuredBrdf& table);

@@ -4,6 +4,7 @@
 #include "brdf/ndf_table.hpp"
 #include "brdf/rgl.hpp"
 #include "hilite/render/area_light.hpp"
+#include "measurement/in_frame_twin.hpp"
 #include "measurement/micro_fields.hpp"
 #include "measurement/peak_frame.hpp"
 #include "measurement/tolerance.hpp"
@@ -84,21 +85,37 @@ void errorEstimate(json& j, const Measurement& m, int width, int height) {
 /// A GL row measured in one frame about the mirror direction measures the halves in that frame (one render each,
 /// no framing: 7 -> 1.x measurements' time), and with the full table's light rule, so that the change is the table's
 /// alone; the reference, the cpu path and the measurements of several parts or about a far peak measure them anew.
+/// Where the row kept its final render (measureRow), the halves come from it without rendering
+/// (measureInFrameByTwin: the twins' change at the pixels that can move the region), else by a render each.
 TableError tableError(render::Renderer* renderer, const scene::Resolved& r, const MeasureSetup& setup,
                       const Measurement& measured, bool aboutMirror) {
     const analysis::Shape& full = measured.shape;
     const bool sameFrame = renderer && !r.reference && !setup.cpu && aboutMirror && measured.inFrame;
-    double e[4] = {0, 0, 0, 0};
-    for (int axis = 0; axis < 3; ++axis) {
-        double worst[4] = {0, 0, 0, 0};
+    std::vector<render::Scene> halves;  // axis-major, then parity
+    for (int axis = 0; axis < 3; ++axis)
         for (int parity = 0; parity < 2; ++parity) {
             render::Scene s = r.scene;
             if (r.scene.brdf.rgl) s.brdf.rgl = brdf::rgl::halfResolution(r.scene.brdf.rgl, axis, parity);
             else s.brdf.measured = brdf::merl::halfResolution(r.scene.brdf.measured, axis, parity);
             if (s.light.area() && !r.reference) s.light.rings = render::lightRings(r.scene);
-            const analysis::Shape h = r.reference ? measureReference(s, setup.options).shape
-                                      : sameFrame ? measureInFrame(*renderer, s, setup, measured).shape
-                                                  : measure(renderer, s, setup).shape;
+            halves.push_back(std::move(s));
+        }
+    std::vector<std::optional<analysis::Shape>> fromImage(halves.size());
+    if (sameFrame) {
+        const std::optional<PixelChanges> fast = tableHalvesChanges(r.scene);
+        fromImage =
+            measureInFrameByTwin(r.scene, halves.size(), fast ? *fast : twinChanges(r.scene, halves), setup, measured);
+    }
+    double e[4] = {0, 0, 0, 0};
+    for (int axis = 0; axis < 3; ++axis) {
+        double worst[4] = {0, 0, 0, 0};
+        for (int parity = 0; parity < 2; ++parity) {
+            const size_t at = size_t(2 * axis + parity);
+            const render::Scene& s = halves[at];
+            const analysis::Shape h = fromImage[at] ? *fromImage[at]
+                                      : r.reference ? measureReference(s, setup.options).shape
+                                      : sameFrame   ? measureInFrame(*renderer, s, setup, measured).shape
+                                                    : measure(renderer, s, setup).shape;
             const double d[4] = {full.aspect - h.aspect, full.eccentricity - h.eccentricity,
                                  full.major_deg - h.major_deg, full.minor_deg - h.minor_deg};
             for (int k = 0; k < 4; ++k) worst[k] = std::max(worst[k], std::abs(d[k]));
@@ -280,10 +297,17 @@ Result measureRow(render::Renderer* renderer, const scene::Resolved& r) {
             res.tableError = tableError(renderer, r, tr.setup, res.measurement, res.framedAbout == "mirror direction");
         return res;
     }
-    Result res = resultOf(r, measure(renderer, scene, setup), setup.width, setup.height, method);
+    // A table's row keeps its final render for table_error's halves (measureInFrameByTwin), then lets it go.
+    MeasureSetup kept = setup;
+    kept.keepImage = setup.keepImage || (scene.brdf.isMeasured() && !setup.cpu);
+    Measurement m = measure(renderer, scene, kept);
+    ImageF image = std::move(m.image);  // moved past resultOf's copy
+    Result res = resultOf(r, m, setup.width, setup.height, method);
+    res.measurement.image = std::move(image);
     if (renderer) res.prefilter = prefilterFields(*renderer, scene, setup, res.measurement);  // --prefilter-check
     if (scene.brdf.isMeasured() && !analysis::unmeasured(res.measurement.shape))
         res.tableError = tableError(renderer, r, setup, res.measurement, res.framedAbout == "mirror direction");
+    if (!setup.keepImage) res.measurement.image = ImageF();
     return res;
 }
 

@@ -7,37 +7,63 @@
 #include "hilite/render/ltc.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 namespace hilite::render {
 
-void measurePixelCpu(const Scene& scene, const PinholeCamera& cam, const MirrorChart& chart, double px, double py,
-                     float* out, int rings) {
-    // The shader's main() in double: the ray through the sample point, unnormalized so that its
-    // length gives cos(gamma) for the pixel's solid angle.
+namespace {
+
+/// The shader's ray through the sample point: unnormalized d (its length gives cos(gamma) for the pixel's solid
+/// angle) and the exitant direction.
+struct SampleRay {
+    double len;
+    dvec3 we;
+};
+SampleRay sampleRay(const PinholeCamera& cam, double px, double py) {
     const double x = (2.0 * px / cam.width - 1.0) * cam.tanHalfX;
     const double y = (2.0 * py / cam.height - 1.0) * cam.tanHalfY;
     const dvec3 d = -cam.back + x * cam.right + y * cam.up;
     const double len = glm::length(d);
-    const dvec3 we = -d / len;
+    return {len, -d / len};
+}
+
+/// The shade.frag main()'s L in double; none where no surface radiance reaches the sample (the shader writes
+/// (0, 0, 0, 0) there; an area light's cap is cut ray by ray instead).
+std::optional<double> luminanceAlong(const Scene& scene, const PinholeCamera& cam, const dvec3& we, int rings) {
+    if (we.z <= 0.0) return std::nullopt;
     const dvec3 p = cam.position - (cam.position.z / we.z) * we;  // the point seen (point and sphere lights)
     const dvec3 wi = scene.light.distant() ? scene.light.direction() : glm::normalize(scene.light.position() - p);
-    // No surface radiance reaches this sample (as in shade.frag; an area light's cap is cut ray by ray instead).
-    if (we.z <= 0.0 || (wi.z <= 0.0 && !scene.light.area())) {
+    if (wi.z <= 0.0 && !scene.light.area()) return std::nullopt;
+    if (scene.light.area() && !scene.light.ltc && rings < 1) rings = lightRings(scene);
+    return brdf::luminance(
+        scene.light.area() ? (scene.light.ltc ? areaRadianceLtc(scene, p, we) : areaRadianceRule(scene, p, we, rings))
+                           : surfaceRadiance(scene, cam.position, we));
+}
+
+}  // namespace
+
+dvec3 sampleExitant(const PinholeCamera& cam, double px, double py) { return sampleRay(cam, px, py).we; }
+
+double measureLuminanceCpu(const Scene& scene, const PinholeCamera& cam, double px, double py, int rings) {
+    return luminanceAlong(scene, cam, sampleRay(cam, px, py).we, rings).value_or(0.0);
+}
+
+void measurePixelCpu(const Scene& scene, const PinholeCamera& cam, const MirrorChart& chart, double px, double py,
+                     float* out, int rings) {
+    const SampleRay r = sampleRay(cam, px, py);
+    const std::optional<double> L = luminanceAlong(scene, cam, r.we, rings);
+    if (!L) {
         std::fill(out, out + 4, 0.f);
         return;
     }
-    if (scene.light.area() && !scene.light.ltc && rings < 1) rings = lightRings(scene);
-    const double L = brdf::luminance(
-        scene.light.area() ? (scene.light.ltc ? areaRadianceLtc(scene, p, we) : areaRadianceRule(scene, p, we, rings))
-                           : surfaceRadiance(scene, cam.position, we));
-    const dvec2 uv = chart.coords(we);
-    const double cosGamma = 1.0 / len;
+    const dvec2 uv = chart.coords(r.we);
+    const double cosGamma = 1.0 / r.len;
     const double pixelArea = (2.0 * cam.tanHalfX / cam.width) * (2.0 * cam.tanHalfY / cam.height);
-    const double w = chart.areaPerSolidAngle(we) * cosGamma * cosGamma * cosGamma * pixelArea;
-    out[0] = float(L);
+    const double w = chart.areaPerSolidAngle(r.we) * cosGamma * cosGamma * cosGamma * pixelArea;
+    out[0] = float(*L);
     out[1] = float(uv.x);
     out[2] = float(uv.y);
     out[3] = float(w);

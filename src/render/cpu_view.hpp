@@ -19,6 +19,13 @@ namespace hilite::render {
 void renderMeasureCpu(const Scene& scene, const PinholeCamera& camera, ImageF& image, dvec2 jitter = dvec2(0.0),
                       const PixelRect& crop = {}, int threads = 0);
 
+/// The exitant direction (from the surface towards the eye) of the ray through a sample point, as the shader's.
+dvec3 sampleExitant(const PinholeCamera& camera, double px, double py);
+
+/// The L of one sample point in double (measurePixelCpu's first channel before rounding to float): for sums of
+/// small differences between twins, such as a measured table against its half-resolution copies.
+double measureLuminanceCpu(const Scene& scene, const PinholeCamera& camera, double px, double py, int rings = 0);
+
 /// The (L, u, v, w) of one sample point (px, py) in pixel units (pixel centres at i + 0.5); `rings`: a sphere or
 /// disk light's rule (render::lightRings: the GL rule's, so that both paths integrate the light alike).
 void measurePixelCpu(const Scene& scene, const PinholeCamera& camera, const MirrorChart& chart, double px, double py,

@@ -19,7 +19,9 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <random>
+#include <vector>
 
 using namespace hilite;
 namespace merl = hilite::brdf::merl;
@@ -432,4 +434,38 @@ TEST_CASE("merl: the albedo of a table: pi f for a constant one, the analytic GG
         MESSAGE("albedo at " << theta << " deg: table " << table << ", GGX " << model);
         CHECK(table == doctest::Approx(model).epsilon(0.01));
     }
+}
+
+TEST_CASE("merl: evaluateShared gives each table's evaluate bit for bit, the coordinates found once") {
+    // The table and its six halves (table_error's) at directions over the whole hemisphere and near the horizon,
+    // where GGX's table has bins without data (the multilinear fallback runs there).
+    auto table = std::make_shared<const merl::MeasuredBrdf>(ggxTable());
+    REQUIRE(table->noData > 0);
+    std::vector<std::shared_ptr<const merl::MeasuredBrdf>> held{table};
+    for (int axis = 0; axis < 3; ++axis)
+        for (int parity = 0; parity < 2; ++parity) held.push_back(merl::halfResolution(table, axis, parity));
+    const merl::MeasuredBrdf* tables[7];
+    for (size_t k = 0; k < 7; ++k) tables[k] = held[k].get();
+    auto dir = [](double thetaDeg, double phiDeg) {
+        const double t = deg2rad(thetaDeg), p = deg2rad(phiDeg);
+        return dvec3(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+    };
+    int compared = 0, differ = 0;
+    for (double ti : {0.0, 7.0, 33.0, 61.0, 84.0, 89.5})
+        for (double to = 0.0; to < 90.0; to += 2.9)
+            for (double po = 0.0; po < 360.0; po += 23.7) {
+                const dvec3 wi = dir(ti, 0.0), wo = dir(to, po);
+                dvec3 all[7];
+                merl::evaluateShared(tables, 7, wi, wo, all);
+                for (size_t k = 0; k < 7; ++k) {
+                    const dvec3 f = tables[k]->evaluate(wi, wo);
+                    CHECK(all[k] == f);
+                    differ += k > 0 && f != all[0];
+                    compared += k > 0;
+                }
+            }
+    CHECK(differ > compared / 2);  // the halves do differ from the table: the comparison has teeth
+    dvec3 below[7];
+    merl::evaluateShared(tables, 7, dir(30, 0), dvec3(0, 0, -1), below);
+    for (const dvec3& f : below) CHECK(f == dvec3(0.0));
 }
