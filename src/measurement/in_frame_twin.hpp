@@ -20,9 +20,10 @@ using PixelChanges = std::function<void(const PinholeCamera& camera, double px, 
 /// The changes by the double twin of each variant against the scene's (render::measureLuminanceCpu), a light with
 /// size integrated by the rule GL drew it with (the variants' light.rings set to it).
 PixelChanges twinChanges(const render::Scene& scene, const std::vector<render::Scene>& variants);
-/// A MERL table under a directional light: the changes of its six halfResolution tables (axis-major, then
-/// parity; table_error's), by merl::evaluateShared: one lookup's coordinates for the seven tables, the same values
-/// as twinChanges of the half tables. None for any other scene.
+/// A MERL table under a directional light, or a sphere or disk light drawn by the rule: the changes of its six
+/// halfResolution tables (axis-major, then parity; table_error's), by merl::evaluateShared at each of the rule's
+/// points (one lookup's coordinates for the seven tables): the same values as twinChanges of the half tables. None
+/// for any other scene (LTC, RGL, a .brdf file).
 std::optional<PixelChanges> tableHalvesChanges(const render::Scene& scene);
 
 /// What measureInFrame(variant, like) would measure for each of `variants` variants of `scene` (what `like`

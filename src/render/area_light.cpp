@@ -98,10 +98,9 @@ const RingRule& ringRule(int n) {
     return rules[size_t(n)];
 }
 
-dvec3 capRule(const LightCap& cap, int n, const std::function<dvec3(const dvec3&)>& g) {
+void capRulePoints(const LightCap& cap, int n, const std::function<void(const dvec3& wi, double w)>& visit) {
     const RingRule& rule = ringRule(n);
     const int m = 4 * n;
-    dvec3 sum(0.0);
     for (int j = 0; j < m; ++j) {
         const double phi = 2.0 * kPi * (j + 0.5) / m;
         const double uMax = capEdge(cap, phi);
@@ -109,11 +108,15 @@ dvec3 capRule(const LightCap& cap, int n, const std::function<dvec3(const dvec3&
         const dvec3 d = std::cos(phi) * cap.a + std::sin(phi) * cap.b;
         for (int i = 0; i < n; ++i) {
             const double u = uMax * rule.x[size_t(i)];
-            const dvec3 wi = (1.0 - u) * cap.center + std::sqrt(u * (2.0 - u)) * d;
-            sum += (rule.w[size_t(i)] * uMax) * g(wi);
+            visit((1.0 - u) * cap.center + std::sqrt(u * (2.0 - u)) * d, rule.w[size_t(i)] * uMax);
         }
     }
-    return sum * (2.0 * kPi / m);
+}
+
+dvec3 capRule(const LightCap& cap, int n, const std::function<dvec3(const dvec3&)>& g) {
+    dvec3 sum(0.0);
+    capRulePoints(cap, n, [&](const dvec3& wi, double w) { sum += w * g(wi); });
+    return sum * (2.0 * kPi / (4 * n));
 }
 
 namespace {

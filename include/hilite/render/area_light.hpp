@@ -52,6 +52,9 @@ struct RingRule {
 };
 const RingRule& ringRule(int n);
 
+/// The rule of n rings x 4n azimuths over the cap: visit(wi, w) at each of its points, whose weighted sum times
+/// 2 pi / 4n is the rule's integral (capRule; for several integrands at the same points at once).
+void capRulePoints(const LightCap& cap, int n, const std::function<void(const dvec3& wi, double w)>& visit);
 /// int_cap g(wi) dwi by the rule of n rings x 4n azimuths.
 dvec3 capRule(const LightCap& cap, int n, const std::function<dvec3(const dvec3&)>& g);
 
