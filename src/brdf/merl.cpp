@@ -123,7 +123,7 @@ struct Gathered {
     double weight = 0;
 };
 
-/// A lookup's coordinates and weights, found once for any number of tables (evaluateShared).
+/// A lookup's coordinates and weights, found once for any number of tables (HalvesLuminance).
 struct Coords {
     double uh, ud, up;
     AxisWeights d, p;
@@ -408,14 +408,64 @@ std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const M
     return half;
 }
 
-void evaluateShared(const MeasuredBrdf* const* tables, std::size_t n, const dvec3& wi, const dvec3& wo, dvec3* out) {
-    if (wi.z <= 0.0 || wo.z <= 0.0) {
-        std::fill(out, out + n, dvec3(0.0));
-        return;
-    }
+HalvesLuminance::HalvesLuminance(const std::shared_ptr<const MeasuredBrdf>& table) : m_lum(8 * kEntries, -1.f) {
+    std::shared_ptr<const MeasuredBrdf> tables[kTables] = {table};
+    for (int axis = 0; axis < 3; ++axis)
+        for (int parity = 0; parity < 2; ++parity)
+            tables[std::size_t(1 + 2 * axis + parity)] = halfResolution(table, axis, parity);
+    for (std::size_t k = 0; k < kTables; ++k)
+        for (std::size_t i = 0; i < kEntries; ++i)
+            if (tables[k]->hasData(i)) m_lum[8 * i + k] = float(luminance(tables[k]->bin(i)));
+}
+
+void HalvesLuminance::evaluate(const dvec3& wi, const dvec3& wo, double out[kTables]) const {
+    std::fill(out, out + kTables, 0.0);
+    if (wi.z <= 0.0 || wo.z <= 0.0) return;
     const HalfDiff a = toHalfDiff(wi, wo);
     const Coords at = coordsOf(a.thetaH, a.thetaD, a.phiD);
-    for (std::size_t k = 0; k < n; ++k) out[k] = valueOf(gatherFrom(*tables[k], at, Interpolation::Cubic));
+    const AxisWeights &d = at.d, &p = at.p;
+    bool complete[kTables];
+    std::fill(complete, complete + kTables, true);
+    for (int i = 0; i < 4; ++i)
+        for (int b = 0; b < 2; ++b)
+            for (int c = 0; c < 2; ++c) {
+                const double w = at.h.w[i] * (b ? d.t : 1 - d.t) * (c ? p.t : 1 - p.t);
+                if (w == 0.0) continue;
+                const float* q = &m_lum[8 * flatIndex(at.h.bin[i], b ? d.hi : d.lo, c ? p.hi : p.lo)];
+                for (std::size_t k = 0; k < kTables; ++k) {
+                    complete[k] = complete[k] && q[k] >= 0.f;
+                    out[k] += w * double(q[k]);
+                }
+            }
+    const AxisWeights h = axisWeights(at.uh, kThetaHBins, false);
+    for (std::size_t k = 0; k < kTables; ++k) {
+        if (complete[k]) {
+            out[k] = std::max(out[k], 0.0);
+            continue;
+        }
+        double sum = 0, weight = 0;  // as gatherFrom's fallback
+        for (int i = 0; i < 2; ++i)
+            for (int b = 0; b < 2; ++b)
+                for (int c = 0; c < 2; ++c) {
+                    const double w = (i ? h.t : 1 - h.t) * (b ? d.t : 1 - d.t) * (c ? p.t : 1 - p.t);
+                    if (w == 0.0) continue;
+                    const float q = m_lum[8 * flatIndex(i ? h.hi : h.lo, b ? d.hi : d.lo, c ? p.hi : p.lo) + k];
+                    if (q < 0.f) continue;
+                    sum += w * double(q);
+                    weight += w;
+                }
+        out[k] = weight > 0 ? sum / weight : 0.0;
+    }
+}
+
+std::shared_ptr<const HalvesLuminance> halvesLuminance(const std::shared_ptr<const MeasuredBrdf>& table) {
+    static std::mutex& mutex = *new std::mutex;  // never destroyed, as load()'s cache
+    static auto& last = *new std::pair<std::weak_ptr<const MeasuredBrdf>, std::shared_ptr<const HalvesLuminance>>;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (last.second && last.first.lock() == table) return last.second;
+    last.second.reset();  // the previous table's 47 MB go before the next are made
+    last = {table, std::make_shared<const HalvesLuminance>(table)};
+    return last.second;
 }
 
 std::string encode(const MeasuredBrdf& table) {

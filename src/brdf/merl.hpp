@@ -148,10 +148,25 @@ Held tablesHeld(bool resetPeak = false);
 std::shared_ptr<const MeasuredBrdf> halfResolution(const std::shared_ptr<const MeasuredBrdf>& table, int axis,
                                                    int parity);
 
-/// evaluate(wi, wo) of n tables at once (out[k] for tables[k], bit for bit), the coordinates and weights found
-/// once: for table_error's halves at a pixel (measurement/in_frame_twin.cpp), where finding them was most of a
-/// lookup.
-void evaluateShared(const MeasuredBrdf* const* tables, std::size_t n, const dvec3& wi, const dvec3& wo, dvec3* out);
+/// The luminances of a table and its six halfResolution tables bin by bin, side by side (8 floats a bin: a lookup
+/// of all seven reads 16 blocks of 32 bytes, where seven tables' lookups read 16 x 3 planes each, 35 MB apart): for
+/// table_error's halves at a pixel (measurement/in_frame_twin.cpp). -1 where a bin has no data.
+class HalvesLuminance {
+public:
+    static constexpr std::size_t kTables = 7;  ///< the table, then its halves (1 + 2 axis + parity)
+    explicit HalvesLuminance(const std::shared_ptr<const MeasuredBrdf>& table);
+    /// The luminance of each table's f(wi, wo) as the measurement's shader looks it up: the cubic lookup of the
+    /// bins' luminances clamped at 0, or, where a bin without data is among its 16, the multilinear lookup of the
+    /// corners with data (renormalized); 0 when either direction is below the horizon. The same as
+    /// luminance(evaluate) but where a channel's cubic sum is negative (the twin clamps each channel), to the
+    /// floats' rounding of the bins (6e-8).
+    void evaluate(const dvec3& wi, const dvec3& wo, double out[kTables]) const;
+
+private:
+    std::vector<float> m_lum;  ///< 8 per bin: the seven tables' luminances and one unused
+};
+/// HalvesLuminance of the table, made once and kept while the table lives (the last table's only). Thread-safe.
+std::shared_ptr<const HalvesLuminance> halvesLuminance(const std::shared_ptr<const MeasuredBrdf>& table);
 
 /// The bytes of a MERL file holding `table` (header 90, 90, 180 and its raw entries, little-endian): the
 /// caller writes them (atomically, io::writeFileAtomic; brdf depends on core only).

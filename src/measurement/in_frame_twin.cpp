@@ -4,7 +4,6 @@
 #include "render/cpu_view.hpp"
 
 #include "brdf/merl.hpp"
-#include "hilite/brdf/evaluate.hpp"
 #include "hilite/render/area_light.hpp"
 
 #include <algorithm>
@@ -42,35 +41,29 @@ std::optional<PixelChanges> tableHalvesChanges(const render::Scene& scene) {
     if ((!directional && !(scene.light.area() && !scene.light.ltc)) || !p.measured || p.rgl || scene.brdfFile ||
         p.diffuse != brdf::Diffuse::None || p.multiscatter != brdf::Multiscatter::None)
         return std::nullopt;
-    std::vector<std::shared_ptr<const brdf::merl::MeasuredBrdf>> held{p.measured};
-    for (int axis = 0; axis < 3; ++axis)
-        for (int parity = 0; parity < 2; ++parity) held.push_back(brdf::merl::halfResolution(p.measured, axis, parity));
+    const std::shared_ptr<const brdf::merl::HalvesLuminance> lum = brdf::merl::halvesLuminance(p.measured);
     const int rings = directional ? 0 : render::lightRings(scene);
+    constexpr size_t kTables = brdf::merl::HalvesLuminance::kTables;
     // The same sums as measureLuminanceCpu's (brdf::radiance: f E max(0, cos theta_i); areaRadianceRule: the
-    // rule's weighted sum of it times 2 pi / 4n), for the seven tables at once.
-    return [held, scene, rings](const PinholeCamera& cam, double px, double py, double* changes) {
-        const brdf::merl::MeasuredBrdf* tables[7];
-        for (size_t k = 0; k < 7; ++k) tables[k] = held[k].get();
-        dvec3 L[7], f[7];
-        std::fill(L, L + 7, dvec3(0.0));
+    // rule's weighted sum of it times 2 pi / 4n), of the seven tables' luminances at once.
+    return [lum, scene, rings](const PinholeCamera& cam, double px, double py, double* changes) {
+        double L[kTables], f[kTables];
+        std::fill(L, L + kTables, 0.0);
         const dvec3 we = render::sampleExitant(cam, px, py);
         if (we.z > 0.0 && rings == 0) {
             const dvec3 wi = scene.light.direction();
-            if (wi.z > 0.0) {
-                brdf::merl::evaluateShared(tables, 7, wi, we, f);
-                for (size_t k = 0; k < 7; ++k) L[k] = f[k] * (scene.light.irradiance * std::max(0.0, wi.z));
-            }
+            lum->evaluate(wi, we, f);
+            for (size_t k = 0; k < kTables; ++k) L[k] = f[k] * (scene.light.irradiance * std::max(0.0, wi.z));
         } else if (we.z > 0.0) {
             const render::LightCap cap = render::lightCap(scene.light, cam.position - (cam.position.z / we.z) * we);
             render::capRulePoints(cap, rings, [&](const dvec3& wi, double w) {
                 if (!(wi.z > 0)) return;
-                brdf::merl::evaluateShared(tables, 7, wi, we, f);
-                for (size_t k = 0; k < 7; ++k) L[k] += w * (f[k] * (cap.radiance * std::max(0.0, wi.z)));
+                lum->evaluate(wi, we, f);
+                for (size_t k = 0; k < kTables; ++k) L[k] += w * (f[k] * (cap.radiance * std::max(0.0, wi.z)));
             });
-            for (dvec3& l : L) l = l * (2.0 * kPi / (4 * rings));
+            for (double& l : L) l *= 2.0 * kPi / (4 * rings);
         }
-        const double full = brdf::luminance(L[0]);
-        for (size_t v = 0; v < 6; ++v) changes[v] = brdf::luminance(L[v + 1]) - full;
+        for (size_t v = 0; v + 1 < kTables; ++v) changes[v] = L[v + 1] - L[0];
     };
 }
 

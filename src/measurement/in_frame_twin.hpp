@@ -21,9 +21,10 @@ using PixelChanges = std::function<void(const PinholeCamera& camera, double px, 
 /// size integrated by the rule GL drew it with (the variants' light.rings set to it).
 PixelChanges twinChanges(const render::Scene& scene, const std::vector<render::Scene>& variants);
 /// A MERL table under a directional light, or a sphere or disk light drawn by the rule: the changes of its six
-/// halfResolution tables (axis-major, then parity; table_error's), by merl::evaluateShared at each of the rule's
-/// points (one lookup's coordinates for the seven tables): the same values as twinChanges of the half tables. None
-/// for any other scene (LTC, RGL, a .brdf file).
+/// halfResolution tables (axis-major, then parity; table_error's), by merl::HalvesLuminance at each of the rule's
+/// points (the seven tables' luminances side by side, one lookup's coordinates for all): twinChanges of the half
+/// tables to the floats' rounding, with the shader's clamp of the luminance where a channel's lookup is negative.
+/// None for any other scene (LTC, RGL, a .brdf file).
 std::optional<PixelChanges> tableHalvesChanges(const render::Scene& scene);
 
 /// What measureInFrame(variant, like) would measure for each of `variants` variants of `scene` (what `like`

@@ -158,14 +158,17 @@ TEST_CASE("measured: table_error's halves from the measurement's own image agree
             }
         const auto byTwin =
             measurement::measureInFrameByTwin(r.scene, 6, measurement::twinChanges(r.scene, halves), kept, m);
-        // The seven tables' lookups sharing their coordinates (at each of the rule's points under the disk): the same
-        // values, the same shapes.
+        // The seven tables' luminances side by side (at each of the rule's points under the disk): the same
+        // shapes, to the floats' rounding of the bins (5.5e-8 of L: measured 8e-9 of the aspect at most).
         if (const auto fast = measurement::tableHalvesChanges(r.scene)) {
             const auto byTable = measurement::measureInFrameByTwin(r.scene, 6, *fast, kept, m);
             for (size_t v = 0; v < 6; ++v) {
                 REQUIRE(byTable[v].has_value() == byTwin[v].has_value());
-                if (byTable[v]) CHECK(byTable[v]->aspect == byTwin[v]->aspect);
-                if (byTable[v]) CHECK(byTable[v]->minor_deg == byTwin[v]->minor_deg);
+                if (!byTable[v]) continue;
+                CHECK(std::abs(byTable[v]->aspect - byTwin[v]->aspect) <=
+                      1e-3 * std::abs(byTwin[v]->aspect - m.shape.aspect) + 3e-8 * m.shape.aspect);
+                CHECK(std::abs(byTable[v]->minor_deg - byTwin[v]->minor_deg) <=
+                      1e-3 * std::abs(byTwin[v]->minor_deg - m.shape.minor_deg) + 3e-8 * m.shape.minor_deg);
             }
             ++fastCompared;
         }
