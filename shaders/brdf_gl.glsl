@@ -129,7 +129,9 @@ vec3 measuredBrdf(vec3 wi, vec3 wo) {
     vec3 v = iFirst ? wi : wo;
     float tx = v.x * cp + v.y * sp, ty = -v.x * sp + v.y * cp, tz = v.z;
     vec3 d = vec3(tx * h.z - tz * r, ty, tx * r + tz * h.z);
-    float thetaD = measuredAngle(sqrt(d.x * d.x + d.y * d.y), d.z);
+    // d is a unit vector and d.z = v.h >= 0 (h halves two directions above the plane): no normalizing, no
+    // obtuse branch (measuredAngle's); 6% of a table's row under the sun's disk, four lookups a pixel.
+    float thetaD = angleFromSinCos(sqrt(d.x * d.x + d.y * d.y), d.z);
     // phi_d folded into [0, pi) by reciprocity: phi_d < 0 -> phi_d + pi.
     float a = measuredAngle(d.y, d.x);
     float phiD = d.y >= 0.0 ? a : PI - a;
