@@ -17,11 +17,11 @@
 #include <nlohmann/json.hpp>
 #include "support/near.hpp"
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <tuple>
 #include <vector>
 
 using namespace hilite;
@@ -184,9 +184,11 @@ TEST_CASE("measured: table_error's halves from the measurement's own image agree
             const analysis::Shape h = measurement::measureInFrame(renderer, halves[v], r.setup, m).shape;
             // What table_error reads is the change from the full table's shape: the two paths must give the same
             // change, up to the GL lookup's float rounding (measured: at most 5% of the change and 7.9e-8 of the value).
-            for (auto [a, b, f] : {std::tuple{byTwin[v]->aspect, h.aspect, m.shape.aspect},
-                                   {byTwin[v]->major_deg, h.major_deg, m.shape.major_deg},
-                                   {byTwin[v]->minor_deg, h.minor_deg, m.shape.minor_deg}}) {
+            // Plain arrays, not structured bindings: C++17 lambdas (CAPTURE's) cannot capture bindings (clang rejects it).
+            for (const std::array<double, 3>& abf : {std::array<double, 3>{byTwin[v]->aspect, h.aspect, m.shape.aspect},
+                                                     {byTwin[v]->major_deg, h.major_deg, m.shape.major_deg},
+                                                     {byTwin[v]->minor_deg, h.minor_deg, m.shape.minor_deg}}) {
+                const double a = abf[0], b = abf[1], f = abf[2];
                 CAPTURE(a);
                 CAPTURE(b);
                 CAPTURE(f);
