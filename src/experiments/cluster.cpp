@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <thread>
 
 namespace hilite::experiments {
@@ -147,12 +148,26 @@ bool inQueue(const std::string& squeue, const std::string& id) {
     return r.status == 0 && r.out.find_first_not_of(" \n") != std::string::npos;
 }
 
-/// Whether job `id` waits on a dependency that can no longer be met (an array task failed or was cancelled, even
-/// after its shard's last row): Slurm keeps such a job pending for ever, reason DependencyNeverSatisfied.
-bool neverRuns(const std::string& squeue, const std::string& id) {
-    if (id.empty()) return false;
-    const Ran r = runProgram({squeue, "-h", "-j", id, "-o", "%r"});
-    return r.status == 0 && r.out.find("DependencyNeverSatisfied") != std::string::npos;
+/// Whether merge job `merge`, behind array job `array` of `tasks` tasks now out of the queue, waits on a dependency
+/// that can no longer be met: a task failed or was cancelled (even after its shard's last row). Slurm keeps such a
+/// job pending for ever, reason DependencyNeverSatisfied, but names that reason only at its next scheduling pass:
+/// until then the array's ended tasks say it (squeue keeps them for MinJobAge, 300 s by default; a task cancelled
+/// while pending leaves no record, so fewer COMPLETED than submitted says it too).
+bool neverRuns(const std::string& squeue, const std::string& merge, const std::string& array, size_t tasks) {
+    if (merge.empty()) return false;
+    const Ran r = runProgram({squeue, "-h", "-j", merge, "-o", "%r"});
+    if (r.status != 0) return false;
+    if (r.out.find("DependencyNeverSatisfied") != std::string::npos) return true;
+    if (array.empty() || r.out.find("Dependency") == std::string::npos) return false;
+    const Ran ended = runProgram({squeue, "-h", "-t", "all", "-j", array, "-o", "%T"});
+    if (ended.status != 0) return false;
+    size_t completed = 0;
+    std::istringstream states(ended.out);
+    for (std::string state; states >> state;) {
+        if (state == "COMPLETED") ++completed;
+        else if (state != "COMPLETING") return true;  // CANCELLED, FAILED, TIMEOUT, NODE_FAIL, OUT_OF_MEMORY, ...
+    }
+    return completed < tasks;
 }
 
 nlohmann::json readSubmitted(const std::string& dir) {
@@ -227,7 +242,8 @@ SubmitResult submitExperiment(const SubmitOptions& o) {
             size_t rows = 0;
             for (int k = 1; k <= before["shards"].get<int>(); ++k)
                 rows += countRows(dir + "/shards/" + std::to_string(k) + "/results.jsonl");
-            if (rows >= before["configurations"].get<size_t>() && !neverRuns(squeue, merge))
+            if (rows >= before["configurations"].get<size_t>() &&
+                !neverRuns(squeue, merge, array, before.value("submitted", nlohmann::json::array()).size()))
                 throw InputError("--resume: merge job " + merge + " of " + o.out +
                                  " is queued or running and every shard is complete: wait for it");
             staleMerge = merge;
