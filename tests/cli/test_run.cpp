@@ -336,16 +336,12 @@ TEST_CASE(
     // A task cancelled: --wait reports it, cancels the merge (its afterok can never be met) and exits 1.
     const std::string submit = d.path + "FAKE_SLURM_CANCEL=2 " + exe + " submit " + (d / "small.toml") +
                                " --shards 3 -o " + (d / "cluster") + " --wait --sbatch=--time=5";
-    FILE* p = popen((submit + " 2>&1").c_str(), "r");
-    std::string out;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-    const int status = pclose(p);
-    CAPTURE(out);
-    CHECK(WEXITSTATUS(status) == 1);
-    CHECK(out.find("small: 8 configurations in 3 shards; array job") != std::string::npos);
-    CHECK(out.find("CANCELLED") != std::string::npos);  // shard 2's log line, in the status table
-    CHECK(out.find("the merge was cancelled") != std::string::npos);
+    const hilite_test::Result r = hilite_test::command(submit);
+    CAPTURE(r.out);
+    CHECK(r.code == 1);
+    CHECK(r.out.find("small: 8 configurations in 3 shards; array job") != std::string::npos);
+    CHECK(r.out.find("CANCELLED") != std::string::npos);  // shard 2's log line, in the status table
+    CHECK(r.out.find("the merge was cancelled") != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(d / "cluster/results.csv"));
     // status says the same from the folder alone.
     const hilite_test::Result st = hilite_test::hilite("status " + (d / "cluster"), true);
@@ -389,14 +385,10 @@ TEST_CASE("cli::submit --resume refuses while every task completed and the merge
                (d / "cluster")) == 0);
     const std::string merge = nlohmann::json::parse(std::ifstream(d / "cluster/slurm/submit.json"))["merge_job"];
     REQUIRE(std::filesystem::exists(d / ("state/" + merge + ".pending")));
-    FILE* p = popen((d.path + exe + " submit --resume -o " + (d / "cluster") + " 2>&1").c_str(), "r");
-    std::string out;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-    const int status = pclose(p);
-    CAPTURE(out);
-    CHECK(WEXITSTATUS(status) == 2);
-    CHECK(out.find("is queued or running and every shard is complete: wait for it") != std::string::npos);
+    const hilite_test::Result r = hilite_test::command(d.path + exe + " submit --resume -o " + (d / "cluster"));
+    CAPTURE(r.out);
+    CHECK(r.code == 2);
+    CHECK(r.out.find("is queued or running and every shard is complete: wait for it") != std::string::npos);
     CHECK(std::filesystem::exists(d / ("state/" + merge + ".pending")));  // the merge left as it is
 }
 

@@ -32,12 +32,12 @@ struct Result {
     double seconds = 0;  ///< wall-clock time from starting hilite to its exit
 };
 
-/// Runs `hilite <args>` through the shell; the output holds stdout, and stderr too unless `stdoutOnly`.
-inline Result hilite(const std::string& args, bool stdoutOnly = false) {
-    const std::string cmd = std::string(HILITE_EXE) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
+/// Runs the shell command line `cmd`; the output holds stdout, and stderr too unless `stdoutOnly`.
+inline Result command(const std::string& cmd, bool stdoutOnly = false) {
+    const std::string line = cmd + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
     Result r;
     const auto t0 = std::chrono::steady_clock::now();
-    FILE* p = popen(cmd.c_str(), "r");
+    FILE* p = popen(line.c_str(), "r");
     if (!p) return r;
     std::array<char, 4096> buf{};
     while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
@@ -45,6 +45,11 @@ inline Result hilite(const std::string& args, bool stdoutOnly = false) {
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
+}
+
+/// Runs `hilite <args>` through the shell; the output holds stdout, and stderr too unless `stdoutOnly`.
+inline Result hilite(const std::string& args, bool stdoutOnly = false) {
+    return command(std::string(HILITE_EXE) + " " + args, stdoutOnly);
 }
 
 /// The number of lines in `s` (its newline characters).
