@@ -330,6 +330,11 @@ dvec3 areaRadianceExact(const Scene& s, const dvec3& p, const dvec3& we) {
         }
         // The rule stalls on the horizon's kink: the same smooth lobe integrated with the kinks as panel edges.
         if (cap.center.z < std::sin(cap.halfAngle)) return capCentred(cap, g).value;
+        // Or on a table's: its interpolation is C0 across bins. No lobe is sharp in the cap here, so the cap's own
+        // polar coordinates, adaptive, converge (a MERL table of GGX 0.2 under the sun: 0.1 s a fresh row
+        // instead of 1.3 s in capExact's rays about the far lobe centre).
+        const CapIntegral centred = capCentred(cap, g);
+        if (centred.converged) return centred.value;
     }
     return capExact(cap, q, width, g).value;
 }
