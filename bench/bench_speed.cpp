@@ -3,7 +3,7 @@
 // warm (the same scene each iteration: context, program, caches) or fresh (incidence 60 + 1e-6 i deg: every
 // per-scene cache missed, as in an experiment). Ratios are read between rows of one run (bench/speed_table.py).
 //   --benchmark_filter=LightRow      directional against the sun's disk (auto rule), GGX 0.02 + Smith at 60 deg, 512^2
-//   --benchmark_filter=TableRow      analytic GGX 0.1 against its MERL table with table_error, directional and disk
+//   --benchmark_filter=TableRow      analytic GGX 0.1, 0.2 against its MERL table with table_error, directional and disk
 //   --benchmark_filter=DiskReference --reference of GGX 0.02 under a 5 deg disk at 30, 60 and 80 deg
 
 #include "brdf/merl.hpp"
@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 using namespace hilite;
@@ -30,16 +31,18 @@ scene::Values values(std::initializer_list<std::pair<const char*, std::string>> 
     return v;
 }
 
-/// A MERL table of GGX 0.1 (implicit G, no Fresnel), written once per process.
-const std::string& ggxTable() {
-    static const std::string file = [] {
-        const std::string path = (std::filesystem::temp_directory_path() / "hilite-bench-speed-ggx.binary").string();
+/// A MERL table of GGX alpha (implicit G, no Fresnel), written once per process and roughness.
+const std::string& ggxTable(double alpha = 0.1) {
+    static std::map<double, std::string> files;
+    std::string& file = files[alpha];
+    if (file.empty()) {
+        const std::string name = "hilite-bench-speed-ggx-" + std::to_string(int(std::lround(alpha * 1000))) + ".binary";
+        file = (std::filesystem::temp_directory_path() / name).string();
         brdf::Params p;
         p.model = brdf::Model::GGX;
-        p.roughness = 0.1;
-        std::ofstream(path, std::ios::binary) << brdf::merl::encode(brdf::merl::tabulate(p));
-        return path;
-    }();
+        p.roughness = alpha;
+        std::ofstream(file, std::ios::binary) << brdf::merl::encode(brdf::merl::tabulate(p));
+    }
     return file;
 }
 
@@ -95,18 +98,21 @@ void BM_LtcFit(benchmark::State& state) {
 }
 BENCHMARK(BM_LtcFit)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-/// Arg 0: 0 analytic GGX 0.1, 1 its MERL table (the row with table_error), 2 analytic under the sun's disk,
-/// 3 the table under the sun's disk; arg 1: warm or fresh.
+/// Arg 0: 0 analytic GGX, 1 its MERL table (the row with table_error), 2 analytic under the sun's disk,
+/// 3 the table under the sun's disk; arg 1: warm or fresh; arg 2: GGX alpha x 1000 (0.1: the sun's auto rule
+/// takes 1 ring, 4 points a pixel; 0.2: the cap's centre alone).
 void BM_TableRow(benchmark::State& state) {
     const int kind = int(state.range(0));
-    scene::Values v = kind % 2 ? values({{"measured", ggxTable()}, {"size", "512"}})
-                               : values({{"model", "ggx"}, {"roughness", "0.1"}, {"size", "512"}});
+    const double alpha = double(state.range(2)) / 1000;
+    const std::string a = std::to_string(alpha).substr(0, 3);
+    scene::Values v = kind % 2 ? values({{"measured", ggxTable(alpha)}, {"size", "512"}})
+                               : values({{"model", "ggx"}, {"roughness", a}, {"size", "512"}});
     if (kind >= 2) v.set("light", "disk");
     timeRows(state, v,
-             std::string(kind % 2 ? "MERL table of GGX 0.1 + table_error" : "analytic GGX 0.1") +
+             std::string(kind % 2 ? "MERL table of GGX " + a + " + table_error" : "analytic GGX " + a) +
                  (kind >= 2 ? ", sun disk" : ", directional"));
 }
-BENCHMARK(BM_TableRow)->ArgsProduct({{0, 1, 2, 3}, {1, 0}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TableRow)->ArgsProduct({{0, 1, 2, 3}, {1, 0}, {100, 200}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// The measurement alone (no table_error): arg 0: 0 analytic GGX 0.1, 1 its MERL table, directional, warm.
 void BM_TableMeasurement(benchmark::State& state) {

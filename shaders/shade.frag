@@ -22,6 +22,7 @@ uniform vec3 uCamPos;     // the eye
 uniform int uRings;          // the rule: n Gauss-Legendre nodes in u = 1 - cos(beta) x 4n azimuths
 uniform float uRingX[32];    // nodes in (0, 1) and weights (summing to 1), render::ringRule
 uniform float uRingW[32];
+uniform vec2 uAzimuth[128];  // (cos, sin) of the rule's 4n azimuths 2 pi (j + 1/2) / 4n (4 for the centre's)
 uniform float uCapRadianceR2;  // sphere: L R^2 = I / pi, L = I / (pi R^2) (the disk sets uCapPower)
 #if defined(HILITE_LIGHT_SPHERE)
 uniform float uLightRadius;  // R
@@ -92,23 +93,32 @@ vec3 capRadiance(vec3 c, float capU, float capPower, vec3 we) {
     float s = length(c.xy);  // tangent frame: a points down toward the horizon, b is horizontal
     vec3 a = s > 0.0 ? vec3(c.x * c.z / s, c.y * c.z / s, -s) : vec3(1.0, 0.0, 0.0);
     vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
-    int m = 4 * uRings;
+    // The whole cap above the horizon (its lowest point at theta_c + alpha < 90 deg): every ray's share is 1.
+    bool whole = c.z * (1.0 - capU) > s * sqrt(capU * (2.0 - capU));
+    // uRings -1 (render::kCentreRule): the centre alone, weighed by the shares of 4 rays (one BRDF evaluation).
+    bool centre = uRings < 0;
+    int m = centre ? 4 : 4 * uRings;
     vec3 sum = vec3(0.0);
-    for (int j = 0; j < m; ++j) {
-        float phi = 6.283185307 * (float(j) + 0.5) / float(m);
-        float cp = cos(phi), sp = sin(phi);
-        // The horizon ends the ray where 1 - cos(beta) = c.z^2 / (r (r - k)), k = cp a.z < 0 (render::horizonEdge).
-        float k = cp * a.z, r = sqrt(k * k + c.z * c.z);
-        float edge = k >= 0.0 ? capU : (r > 0.0 ? c.z * c.z / (r * (r - k)) : 0.0);
-        float share = edge >= capU ? 1.0 : edge / capU;  // uMax / capU, without 0 / 0 for a cap float holds as 0
+    float shares = whole ? float(m) : 0.0;
+    for (int j = 0; j < m && !(centre && whole); ++j) {
+        vec2 cs = uAzimuth[j];
+        float share = 1.0;
+        if (!whole) {  // the horizon ends the ray where 1 - cos(beta) = c.z^2 / (r (r - k)), k = cos(phi) a.z < 0
+            float k = cs.x * a.z, r = sqrt(k * k + c.z * c.z);  // (render::horizonEdge)
+            float edge = k >= 0.0 ? capU : (r > 0.0 ? c.z * c.z / (r * (r - k)) : 0.0);
+            share = edge >= capU ? 1.0 : edge / capU;  // uMax / capU, without 0 / 0 for a cap float holds as 0
+            shares += share;
+        }
+        if (centre) continue;
         float uMax = capU * share;
-        vec3 d = cp * a + sp * b;
+        vec3 d = cs.x * a + cs.y * b;
         for (int i = 0; i < uRings; ++i) {
             float u = uMax * uRingX[i];
             vec3 wi = (1.0 - u) * c + sqrt(u * (2.0 - u)) * d;
             if (wi.z > 0.0) sum += (uRingW[i] * share * wi.z) * brdf(wi, we);
         }
     }
+    if (centre && c.z > 0.0 && shares > 0.0) sum = (shares * c.z) * brdf(c, we);
     return sum * (capPower * 6.283185307 / float(m));
 }
 #endif

@@ -61,7 +61,7 @@ std::optional<PixelChanges> tableHalvesChanges(const render::Scene& scene) {
                 lum->evaluate(wi, we, f);
                 for (size_t k = 0; k < kTables; ++k) L[k] += w * (f[k] * (cap.radiance * std::max(0.0, wi.z)));
             });
-            for (double& l : L) l *= 2.0 * kPi / (4 * rings);
+            for (double& l : L) l *= render::capRuleScale(rings);
         }
         for (size_t v = 0; v + 1 < kTables; ++v) changes[v] = L[v + 1] - L[0];
     };

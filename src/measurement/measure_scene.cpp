@@ -619,7 +619,7 @@ Measurement measureGl(render::Renderer& renderer, const render::Scene& given, co
     // No CPU twin (a .brdf file): framed from coarse renders alone, error from resolution convergence.
     if (!render::hasTwin(given)) return measureBlind(renderer, given, setup);
     // Framed by the twin of what is drawn: an area light's rule, not its exact integral (40 -> 4 ms for the sun).
-    const render::Scene scene = given.light.twinRings > 0 ? given : render::withRuleTwin(given);
+    const render::Scene scene = given.light.twinRings != 0 ? given : render::withRuleTwin(given);
     // A peak far from the mirror direction (retroreflection): framed and measured about the peak.
     if (const auto framed = mirror ? std::nullopt : frameAboutPeak(scene, setup.options.threshold))
         return measureGl(renderer, *framed, setup);
@@ -648,7 +648,7 @@ Measurement measureInFrame(render::Renderer& renderer, const render::Scene& scen
 }
 
 Measurement measureCpu(const render::Scene& given, const MeasureSetup& setup) {
-    const render::Scene scene = given.light.twinRings > 0 ? given : render::withRuleTwin(given);
+    const render::Scene scene = given.light.twinRings != 0 ? given : render::withRuleTwin(given);
     const bool mirror = setup.options.lobe == analysis::Lobe::Mirror;
     if (const auto framed = mirror ? std::nullopt : frameAboutPeak(scene, setup.options.threshold))
         return measureCpu(*framed, setup);
@@ -707,7 +707,7 @@ namespace {
 
 /// The twin's cheap enclosure under a light with size integrated exactly (render/area_bounds.hpp); none otherwise.
 analysis::LobeBounds twinBounds(const render::Scene& scene) {
-    if (!scene.light.area() || scene.light.twinRings > 0) return {};
+    if (!scene.light.area() || scene.light.twinRings != 0) return {};
     const auto copy = std::make_shared<const render::Scene>(scene);
     const MirrorChart chart = scene.light.chart();
     const dvec3 eye = render::eyePosition(scene);

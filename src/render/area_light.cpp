@@ -99,6 +99,12 @@ const RingRule& ringRule(int n) {
 }
 
 void capRulePoints(const LightCap& cap, int n, const std::function<void(const dvec3& wi, double w)>& visit) {
+    if (n == kCentreRule) {  // the centre, weighed by the 1-ring rule's shares of the cap (the horizon's cut)
+        double share = 0;
+        for (int j = 0; j < 4; ++j) share += std::max(0.0, capEdge(cap, 2.0 * kPi * (j + 0.5) / 4));
+        if (share > 0) visit(cap.center, share);
+        return;
+    }
     const RingRule& rule = ringRule(n);
     const int m = 4 * n;
     for (int j = 0; j < m; ++j) {
@@ -116,7 +122,7 @@ void capRulePoints(const LightCap& cap, int n, const std::function<void(const dv
 dvec3 capRule(const LightCap& cap, int n, const std::function<dvec3(const dvec3&)>& g) {
     dvec3 sum(0.0);
     capRulePoints(cap, n, [&](const dvec3& wi, double w) { sum += w * g(wi); });
-    return sum * (2.0 * kPi / (4 * n));
+    return sum * capRuleScale(n);
 }
 
 namespace {
@@ -359,9 +365,9 @@ bool areaLuminanceBounds(const Scene& s, const dvec3& p, const dvec3& we, double
 
 dvec3 areaRadianceRule(const Scene& s, const dvec3& p, const dvec3& we, int rings) {
     checkRadianceQuery(s, p, we, "areaRadianceRule");
-    if (rings < 1 || rings > kMaxRings)
+    if (!validRings(rings))
         throw InputError("areaRadianceRule: rings must be a whole number in [1, " + std::to_string(kMaxRings) +
-                         "] (got " + std::to_string(rings) + ")");
+                         "] or render::kCentreRule (got " + std::to_string(rings) + ")");
     const LightCap cap = lightCap(s.light, p);
     auto g = [&](const dvec3& wi) { return wi.z > 0 ? brdf::radiance(s.brdf, wi, we, cap.radiance) : dvec3(0.0); };
     return capRule(cap, rings, g);
@@ -437,7 +443,7 @@ RuleCheck chooseRule(const Scene& s) {
         }
         return {0, e};
     }
-    if (s.light.rings > 0) return {s.light.rings, errorOf(s.light.rings)};
+    if (s.light.rings != 0) return {s.light.rings, errorOf(s.light.rings)};
     RuleCheck best{kMaxRings, 0.0};
     for (int n : kRingLadder) {
         const double e = errorOf(n);

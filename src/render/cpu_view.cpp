@@ -37,7 +37,7 @@ std::optional<double> luminanceAlong(const Scene& scene, const PinholeCamera& ca
     const dvec3 p = cam.position - (cam.position.z / we.z) * we;  // the point seen (point and sphere lights)
     const dvec3 wi = scene.light.distant() ? scene.light.direction() : glm::normalize(scene.light.position() - p);
     if (wi.z <= 0.0 && !scene.light.area()) return std::nullopt;
-    if (scene.light.area() && !scene.light.ltc && rings < 1) rings = lightRings(scene);
+    if (scene.light.area() && !scene.light.ltc && rings == 0) rings = lightRings(scene);
     return brdf::luminance(
         scene.light.area() ? (scene.light.ltc ? areaRadianceLtc(scene, p, we) : areaRadianceRule(scene, p, we, rings))
                            : surfaceRadiance(scene, cam.position, we));

@@ -33,8 +33,11 @@ std::ostream& operator<<(std::ostream& os, const Scene& s) {
     const Light& l = s.light;
     os << " light=" << toString(l.type) << " incidence=" << l.incidenceDeg << " azimuth=" << l.azimuthDeg;
     if (l.area())
-        os << " rings=" << (l.rings > 0 ? std::to_string(l.rings) : "auto") << " rule_target=" << l.ruleTarget
-           << (l.ltc ? " light_rule=ltc" : "");
+        os << " rings="
+           << (l.rings == kCentreRule ? "centre"
+               : l.rings > 0          ? std::to_string(l.rings)
+                                      : "auto")
+           << " rule_target=" << l.ruleTarget << (l.ltc ? " light_rule=ltc" : "");
     if (l.type == LightType::Sphere) os << " light_radius=" << l.radius;
     if (l.type == LightType::Disk) os << " light_angle=" << l.angleDeg;
     if (!l.distant())
@@ -88,8 +91,11 @@ std::string describeLight(const Scene& scene) {
           << "evaluates the same in double, the reference integrates adaptively to " << kExactTolerance;
         return s.str();
     }
-    s << ": GL rule " << rule.rings << " rings x " << 4 * rule.rings << " azimuths = " << 4 * rule.rings * rule.rings
-      << " points per pixel (" << (l.rings > 0 ? "as given" : "chosen") << "; radiance error " << rule.error
+    if (rule.rings == kCentreRule) s << ": GL rule: the cap's centre alone (light_rings 0), 1 point per pixel";
+    else
+        s << ": GL rule " << rule.rings << " rings x " << 4 * rule.rings << " azimuths = " << rulePoints(rule.rings)
+          << " points per pixel";
+    s << " (" << (l.rings != 0 ? "as given" : "chosen") << "; radiance error " << rule.error
       << " of the peak against the exact integral; the twin integrates adaptively to " << kExactTolerance << ")";
     return s.str();
 }
@@ -172,7 +178,7 @@ dvec3 surfaceRadiance(const Scene& s, const dvec3& lightDirection, const dvec3& 
     if (s.light.type == LightType::Directional) return brdf::radiance(s.brdf, lightDirection, we, s.light.irradiance);
     const dvec3 p = eye - (eye.z / we.z) * we;  // where the eye's ray meets the plane
     if (s.light.area()) {
-        if (s.light.twinRings <= 0) return areaRadianceExact(s, p, we);
+        if (s.light.twinRings == 0) return areaRadianceExact(s, p, we);
         return s.light.ltc ? areaRadianceLtc(s, p, we) : areaRadianceRule(s, p, we, s.light.twinRings);
     }
     const dvec3 toLight = s.light.distance * lightDirection - p;  // Light::position()
@@ -212,9 +218,18 @@ void setAreaLightUniforms(const gl::Program& prog, const Scene& scene) {
         glUniform2fv(prog.uniform("uLtcCircle"), kLtcVertices, circle);
     } else {
         const int n = lightRings(scene);
-        const RingRule& rule = ringRule(n);
         float x[kMaxRings] = {}, w[kMaxRings] = {};
-        for (int i = 0; i < n; ++i) x[i] = float(rule.x[size_t(i)]), w[i] = float(rule.w[size_t(i)]);
+        if (n != kCentreRule) {
+            const RingRule& rule = ringRule(n);
+            for (int i = 0; i < n; ++i) x[i] = float(rule.x[size_t(i)]), w[i] = float(rule.w[size_t(i)]);
+        }
+        const int m = 4 * (n == kCentreRule ? 1 : n);  // the azimuths' cos and sin, once per draw, not per pixel
+        float azimuth[2 * 4 * kMaxRings] = {};
+        for (int j = 0; j < m; ++j) {
+            const double phi = 2.0 * kPi * (j + 0.5) / m;
+            azimuth[2 * j] = float(std::cos(phi)), azimuth[2 * j + 1] = float(std::sin(phi));
+        }
+        glUniform2fv(prog.uniform("uAzimuth"), m, azimuth);
         glUniform1i(prog.uniform("uRings"), n);
         glUniform1fv(prog.uniform("uRingX"), kMaxRings, x);
         glUniform1fv(prog.uniform("uRingW"), kMaxRings, w);

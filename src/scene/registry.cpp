@@ -25,6 +25,9 @@ namespace {
 using brdf::Model;
 using nlohmann::json;
 
+/// A rule's rings as users name them: 0 for the cap's centre alone (render::kCentreRule).
+int userRings(int n) { return n == render::kCentreRule ? 0 : n; }
+
 // ---- What a parameter applies to ----
 
 bool builtin(const Resolved& r) { return !r.scene.brdfFile && !r.scene.brdf.isMeasured(); }
@@ -808,21 +811,32 @@ std::vector<Param> build() {
          T::Light,
          K::Integer,
          "",
-         1,
+         0,
          render::kMaxRings,
          false,
          false,
          {},
          "",
          "sphere, disk: the GL rule over the light, n rings (Gauss-Legendre in 1 - cos) x 4n azimuths = 4n^2 "
-         "points per pixel; auto: the fewest rings whose radiance error against the exact integral is within 1e-3 "
-         "of the peak (tolerance / 4 with --tolerance)",
+         "points per pixel; 0: the cap's centre alone (1 point: for a light much smaller than the lobe, e.g. the "
+         "sun on a lobe 0.1 wide); auto: the cheapest of these whose radiance error against the exact integral is "
+         "within 1e-3 of the peak (tolerance / 4 with --tolerance)",
          "light sphere, disk",
          area,
          "light_rings",
-         [](const Resolved& r) -> json { return render::lightRings(r.scene); }});
+         [](const Resolved& r) -> json { return userRings(render::lightRings(r.scene)); }});
     bindAutomatic(
         p.back(), [](auto& r) -> auto& { return r.scene.light.rings; }, "auto");
+    {  // the user's 0 (the centre's rule) is render::kCentreRule: the field's 0 means auto
+        Param& e = p.back();
+        e.write = [](Resolved& r, const std::string& t) {
+            r.scene.light.rings = t == "auto" ? 0 : parseAs<int>(t) == 0 ? render::kCentreRule : parseAs<int>(t);
+        };
+        e.read = [](const Resolved& r, bool) {
+            const int n = r.scene.light.rings;
+            return n == 0 ? std::string("auto") : std::to_string(userRings(n));
+        };
+    }
     add({"light_rule",
          T::Light,
          K::Choice,
@@ -1396,7 +1410,7 @@ std::string sceneKey(const render::Scene& scene) {
     // The fields of the scene no parameter sets.
     const render::Light& l = scene.light;
     key += "rule_target=" + exactText(l.ruleTarget);
-    if (l.twinRings > 0) key += ";twin_rings=" + std::to_string(l.twinRings);
+    if (l.twinRings != 0) key += ";twin_rings=" + std::to_string(l.twinRings);
     if (l.chartCenter)
         key += ";chart_centre=" + exactText(l.chartCenter->x) + "," + exactText(l.chartCenter->y) + "," +
                exactText(l.chartCenter->z);

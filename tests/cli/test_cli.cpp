@@ -142,6 +142,24 @@ TEST_CASE("cli::brdf prints tables and JSON lines with the documented fields, an
     std::filesystem::remove(png);
 }
 
+TEST_CASE(
+    "cli::measure --light-rings 0 is the cap's centre alone: auto takes it for a wide lobe, a narrow one is flagged") {
+    // The rule's error: tests/render/test_area_light.cpp; its price: docs/speed.md (the price list's "sun centre").
+    const auto wide = hilite("measure --light disk --roughness 0.3 --incidence 60 --size 64 --json", true);
+    REQUIRE(wide.code == 0);
+    CHECK(wide.out.find("\"light_rings\":0") != std::string::npos);
+    CHECK(wide.out.find("\"light_rule\":\"rings\"") != std::string::npos);
+    CHECK(wide.out.find("light_undersampled") == std::string::npos);
+    const auto narrow =
+        hilite("measure --light disk --light-rings 0 --roughness 0.02 --incidence 60 --size 64 --json", true);
+    REQUIRE(narrow.code == 0);
+    CHECK(narrow.out.find("\"light_rings\":0") != std::string::npos);
+    CHECK(narrow.out.find("light_undersampled") != std::string::npos);
+    const auto told = hilite("explain --light disk --light-rings 0 --roughness 0.3", true);
+    REQUIRE(told.code == 0);
+    CHECK(told.out.find("the cap's centre alone (light_rings 0), 1 point per pixel (as given") != std::string::npos);
+}
+
 TEST_CASE("cli::measure --light-rule ltc reaches the row: its column, its rule's error, the flag it earns") {
     // The knob's accuracy and price: tests/render/test_ltc.cpp, docs/speed.md. A bad value: tests/cli/test_hostile.cpp.
     const auto t =

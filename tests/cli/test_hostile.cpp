@@ -129,7 +129,7 @@ std::vector<Case> flagCases() {
         // A sphere has a size: zero or negative is no sphere; below 1e-100 the double twin's cap underflows.
         {"--light-radius", {"0", "-1", "-0", "nan", "inf", "''", "1e-101"}},
         {"--light-angle", {"0", "90", "91", "-1", "nan", "''", "1e-160"}},  // an angular radius in [1e-100, 90)
-        {"--light-rings", {"0", "33", "1.5", "-1", "automatic", "''"}},
+        {"--light-rings", {"33", "1.5", "-1", "automatic", "''"}},          // 0: the centre's rule
         {"--light-rule", {"bogus", "LTC", "''"}},
     };
     for (const auto& [flag, values] : numbers)

@@ -276,6 +276,64 @@ TEST_CASE("render::areaRadianceExact a table's kinks far from its lobe: the cap'
     CHECK(worst < 1e-8);
 }
 
+TEST_CASE("render::kCentreRule the cap's centre alone: f cos E where the cap is whole, second order in its radius") {
+    render::Scene s;
+    s.brdf.model = brdf::Model::GGX;
+    s.brdf.roughness = 0.2;
+    s.light = diskLight(0.266, 60.0, 2.0);
+    const dvec3 we = s.light.chart().direction(0.01, 0.02);
+    // A whole cap: the visible shares are 1, so the rule is f cos L times the cap's solid angle 2 pi (1 - cos d):
+    // the directional light of the same irradiance E = L pi sin^2 d, times 2 / (1 + cos d).
+    const dvec3 centre = render::areaRadianceRule(s, dvec3(0.0), we, render::kCentreRule);
+    const double d = deg2rad(0.266);
+    const dvec3 directional = brdf::radiance(s.brdf, s.light.direction(), we, 2.0) * (2.0 / (1.0 + std::cos(d)));
+    CHECK(quadratureNorm(centre - directional) <= 1e-12 * quadratureNorm(directional));
+    // Its error against the exact integral falls as the disk's radius squared (midpoint rule).
+    std::vector<double> errors;
+    for (double angle : {2.0, 1.0, 0.5}) {
+        s.light = diskLight(angle, 60.0);
+        const dvec3 e = render::areaRadianceExact(s, dvec3(0.0), we);
+        const dvec3 c = render::areaRadianceRule(s, dvec3(0.0), we, render::kCentreRule);
+        errors.push_back(quadratureNorm(c - e) / quadratureNorm(e));
+    }
+    MESSAGE("GGX 0.2 at 60 deg, the centre's relative error at disks of 2, 1, 0.5 deg: "
+            << errors[0] << ", " << errors[1] << ", " << errors[2]);
+    CHECK(errors[0] / errors[1] == doctest::Approx(4.0).epsilon(0.1));
+    CHECK(errors[1] / errors[2] == doctest::Approx(4.0).epsilon(0.1));
+    // The horizon: a cap cut by it is weighed by its visible shares along 4 azimuths, never the whole cap's.
+    s.light = diskLight(8.0, 87.0);
+    const render::LightCap cap = render::lightCap(s.light, dvec3(0.0));
+    double weight = 0;
+    int points = 0;
+    render::capRulePoints(cap, render::kCentreRule, [&](const dvec3& wi, double w) {
+        CHECK(glm::length(wi - cap.center) < 1e-15);
+        weight += w, ++points;
+    });
+    CHECK(points == 1);
+    CHECK(weight * render::capRuleScale(render::kCentreRule) < 2.0 * kPi * cap.uMax * 0.9);
+    CHECK(weight > 0);
+}
+
+TEST_CASE("render::lightRule auto takes the centre alone for a lobe wide under the sun, never for a narrow one") {
+    render::Scene s;
+    s.brdf.model = brdf::Model::GGX;
+    s.light = diskLight(0.266, 60.0);
+    s.brdf.roughness = 0.3;
+    const render::RuleCheck wide = render::lightRule(s);
+    CHECK(wide.rings == render::kCentreRule);
+    CHECK(wide.error <= s.light.ruleTarget);
+    CHECK(render::rulePoints(wide.rings) == 1);
+    s.brdf.roughness = 0.1;  // the centre's error 1.3e-3 of the peak: past the target, one ring
+    s.light.rings = render::kCentreRule;
+    const render::RuleCheck centre = render::lightRule(s);
+    CHECK(centre.error > s.light.ruleTarget);
+    s.light.rings = 0;
+    const render::RuleCheck chosen = render::lightRule(s);
+    CHECK(chosen.rings == 1);
+    MESSAGE("the sun at 60 deg: GGX 0.3 centre " << wide.error << "; GGX 0.1 centre " << centre.error << ", auto "
+                                                 << chosen.rings << " ring(s) " << chosen.error);
+}
+
 TEST_CASE("render::ringRule nodes in (0, 1), weights summing to 1, polynomials integrated exactly") {
     for (int n = 1; n <= render::kMaxRings; ++n) {
         const render::RingRule& r = render::ringRule(n);
@@ -296,7 +354,9 @@ TEST_CASE("render::areaRadiance* refuse what they cannot integrate with an Input
     s.light = diskLight(0.266, 60.0);
     const dvec3 we = s.light.chart().wr();
     CHECK_THROWS_WITH_AS(render::areaRadianceRule(s, dvec3(0.0), we, 0),
-                         "areaRadianceRule: rings must be a whole number in [1, 32] (got 0)", InputError);
+                         "areaRadianceRule: rings must be a whole number in [1, 32] or render::kCentreRule (got 0)",
+                         InputError);
+    CHECK_THROWS_AS(render::areaRadianceRule(s, dvec3(0.0), we, -2), InputError);
     CHECK_THROWS_AS(render::areaRadianceRule(s, dvec3(0.0), we, render::kMaxRings + 1), InputError);
     CHECK_THROWS_AS(render::areaRadianceExact(s, dvec3(0.0), dvec3(NAN, 0.0, 1.0)), InputError);
     CHECK_THROWS_AS(render::areaRadianceRule(s, dvec3(NAN), we, 4), InputError);

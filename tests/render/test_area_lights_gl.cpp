@@ -109,6 +109,41 @@ TEST_CASE("render::Renderer a disk cut by the horizon: GL and the CPU rule agree
     CHECK(exact.maxRelError < 1e-3);
 }
 
+TEST_CASE("render::Renderer the centre's rule (light_rings 0): GL and the CPU rule agree, whole and horizon-cut caps") {
+    auto& env = test::glEnv();
+    render::Scene sphere = ggx(0.3, 50);
+    sphere.light.type = render::LightType::Sphere;
+    sphere.light.radius = 0.3;
+    sphere.light.rings = render::kCentreRule;
+    const std::vector<std::pair<std::string, render::Scene>> cases = {
+        {"GGX 0.3 at 60 deg, the sun", withDisk(ggx(0.3, 60), 0.266, render::kCentreRule)},
+        {"GGX 0.3 at 87 deg, an 8 deg disk the horizon cuts", withDisk(ggx(0.3, 87), 8.0, render::kCentreRule)},
+        {"GGX 0.3 at 50 deg, sphere R 0.3 at 10", sphere},
+    };
+    for (const auto& c : cases) {
+        CAPTURE(c.first);
+        const PinholeCamera cam = measurement::measurementCamera(c.second, c.second.light.chart().wr(), 60.0, 48, 48);
+        ImageF gl, cpu;
+        env.renderer->render(c.second, cam, render::Output::Measure, gl);
+        render::renderMeasureCpu(c.second, cam, cpu);
+        const double e = maxRelative(gl, cpu);
+        MESSAGE(c.first << ": the centre's rule, GL vs CPU " << e);
+        CHECK(e < 1e-4);
+    }
+    // A whole cap: the sun's centre rule is the directional light of the same irradiance times 2 / (1 + cos d)
+    // (the cap's solid angle over its projected one), pixel for pixel.
+    const render::Scene sun = cases[0].second;
+    render::Scene directional = sun;
+    directional.light.type = render::LightType::Directional;
+    const PinholeCamera cam = measurement::measurementCamera(sun, sun.light.chart().wr(), 60.0, 48, 48);
+    ImageF a, b;
+    env.renderer->render(sun, cam, render::Output::Measure, a);
+    env.renderer->render(directional, cam, render::Output::Measure, b);
+    const float factor = float(2.0 / (1.0 + std::cos(deg2rad(0.266))));
+    for (size_t i = 0; i < b.data.size(); i += 4) b.data[i] *= factor;
+    CHECK(maxRelative(a, b) < 1e-5);
+}
+
 TEST_CASE("render::Renderer the sphere light converges to the point light as R -> 0, second order") {
     // Per-pixel relative error of the sphere against the point light of the same intensity and position, the
     // measurement view of GGX 0.1 at 45 deg, both at distance 10. The rule is held at 8 rings (exact to far below

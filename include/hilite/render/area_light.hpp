@@ -14,6 +14,7 @@
 //     centre (the mirror image of we; we itself for a retroreflector), so a lobe of any width is resolved,
 //     by nested adaptive Gauss-Kronrod to a relative kExactTolerance.
 
+#include "hilite/core/math.hpp"
 #include "hilite/render/scene.hpp"
 
 #include <functional>
@@ -25,8 +26,16 @@ namespace hilite::render {
 constexpr double kExactTolerance = 1e-9;
 /// The rule's largest ring count: 32 rings x 128 azimuths = 4096 BRDF evaluations per pixel.
 constexpr int kMaxRings = 32;
+/// The rule of the cap's centre alone: one BRDF evaluation, weighed by the cap's visible solid angle (the midpoint
+/// rule: its error ~ (cap radius / lobe width)^2 / 4, within 1e-3 of the peak for the sun's disk on a lobe 0.1
+/// wide). `light_rings 0` to a user; -1 here, since 0 means "choose" (Light::rings) or "exact" (twinRings).
+constexpr int kCentreRule = -1;
 /// Ring counts the automatic choice tries, cheapest first.
-constexpr int kRingLadder[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
+constexpr int kRingLadder[] = {kCentreRule, 1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
+/// A rule's ring count: kCentreRule or 1..kMaxRings.
+inline bool validRings(int n) { return n == kCentreRule || (n >= 1 && n <= kMaxRings); }
+/// The rule's points per pixel (4n^2; 1 for the centre's).
+inline int rulePoints(int n) { return n == kCentreRule ? 1 : 4 * n * n; }
 
 /// A light with size as seen from one point of the plane.
 struct LightCap {
@@ -52,10 +61,13 @@ struct RingRule {
 };
 const RingRule& ringRule(int n);
 
-/// The rule of n rings x 4n azimuths over the cap: visit(wi, w) at each of its points, whose weighted sum times
-/// 2 pi / 4n is the rule's integral (capRule; for several integrands at the same points at once).
+/// The rule of n rings x 4n azimuths over the cap (or its centre alone, n = kCentreRule, weighed by the visible
+/// share of the cap along 4 azimuths): visit(wi, w) at each of its points, whose weighted sum times
+/// capRuleScale(n) is the rule's integral (capRule; for several integrands at the same points at once).
 void capRulePoints(const LightCap& cap, int n, const std::function<void(const dvec3& wi, double w)>& visit);
-/// int_cap g(wi) dwi by the rule of n rings x 4n azimuths.
+/// 2 pi / 4n (the centre's rule: 2 pi / 4).
+inline double capRuleScale(int n) { return 2.0 * kPi / (4 * (n == kCentreRule ? 1 : n)); }
+/// int_cap g(wi) dwi by the rule of n rings x 4n azimuths (or n = kCentreRule).
 dvec3 capRule(const LightCap& cap, int n, const std::function<dvec3(const dvec3&)>& g);
 
 /// int_cap g(wi) dwi exactly (to kExactTolerance): polar coordinates about q (unit, q.z > 0), where g may
@@ -82,12 +94,13 @@ struct RuleCheck {
     int rings = 0;
     double error = 0;
 };
-/// The rings the GL rule renders the scene with (0 for a point or directional light): light.rings when set,
+/// The rings the GL rule renders the scene with (0 for a point or directional light; kCentreRule for the cap's
+/// centre alone): light.rings when set,
 /// else the cheapest of kRingLadder whose error is within light.ruleTarget (kMaxRings if none is), with that
 /// error. Kept per thread for the last scene (every draw asks). With light.ltc: 0 rings and the error of the
 /// linearly transformed cosines (render/ltc.hpp) at the same points.
 RuleCheck lightRule(const Scene& s);
-inline int lightRings(const Scene& s) { return s.light.rings > 0 ? s.light.rings : lightRule(s).rings; }
+inline int lightRings(const Scene& s) { return s.light.rings != 0 ? s.light.rings : lightRule(s).rings; }
 
 /// The scene whose CPU twin integrates a sphere or disk light by the GL rule it is drawn with (light.twinRings =
 /// lightRings): for the framing searches of a GL or CPU measurement, thousands of twin evaluations, each 4n^2

@@ -42,19 +42,19 @@ struct Light {
     double distance = 10.0;   ///< point, sphere: distance of the centre from the origin
     double radius = 0.1;      ///< sphere: R (< the centre's height above the plane)
     double angleDeg = 0.266;  ///< disk: angular radius delta (the sun's mean: 0.266 deg)
-    /// sphere, disk: the GL rule's rings n (n Gauss-Legendre nodes x 4n azimuths); 0: chosen per scene
-    /// (render::lightRings) to reach `ruleTarget`.
+    /// sphere, disk: the GL rule's rings n (n Gauss-Legendre nodes x 4n azimuths; render::kCentreRule: the cap's
+    /// centre alone); 0: chosen per scene (render::lightRings) to reach `ruleTarget`.
     int rings = 0;
     /// sphere, disk with rings 0: the largest radiance error of the rule, relative to the lobe's peak, that
     /// the automatic choice accepts (set from --tolerance when one is given).
     double ruleTarget = 1e-3;
     /// sphere, disk: how the CPU twin integrates the cap. 0: exactly (render::areaRadianceExact), as the reference
-    /// does; n > 0: the GL rule's n rings in double (render::areaRadianceRule), which the GL and CPU paths' framing
+    /// does; n != 0: the GL rule's n rings (or the centre's, kCentreRule) in double (render::areaRadianceRule), which the GL and CPU paths' framing
     /// searches use (render::withRuleTwin): the lobe that is drawn, at 4n^2 evaluations instead of 80-80,000.
     int twinRings = 0;
     /// sphere, disk: integrate the cap by linearly transformed cosines (render/ltc.hpp: a cosine lobe fitted to
     /// the scene's isotropic BRDF per view elevation, the cap as a polygon) instead of the rule, in GL and in the
-    /// framing twin (twinRings > 0); the reference still integrates exactly.
+    /// framing twin (twinRings != 0); the reference still integrates exactly.
     bool ltc = false;
     /// The measurement chart's centre when it is not the mirror direction (a highlight framed about a peak far
     /// from it, e.g. retroreflection: measurement/peak_frame.hpp). Unset: the mirror direction.
