@@ -84,6 +84,15 @@ vec2 chartCoords(vec3 we, out float rhoOverSin) {
 }
 
 #if defined(HILITE_LIGHT_AREA)
+// The share uMax / capU of the cap along azimuth (cos, sin) cs that the horizon leaves: the ray ends where
+// 1 - cos(beta) = c.z^2 / (r (r - k)), k = cos(phi) a.z < 0 (render::horizonEdge); no 0 / 0 for a cap float
+// holds as 0.
+float rayShare(vec2 cs, vec3 a, vec3 c, float capU) {
+    float k = cs.x * a.z, r = sqrt(k * k + c.z * c.z);
+    float edge = k >= 0.0 ? capU : (r > 0.0 ? c.z * c.z / (r * (r - k)) : 0.0);
+    return edge >= capU ? 1.0 : edge / capU;
+}
+
 // int_cap f(wi, we) L cos(theta_i) dwi over a cap of directions (centre c, capU = 1 - cos(angular radius)) by the
 // rule of uRings rings x 4 uRings azimuths, each ray cut at the horizon. Twin: render::capRule (render/area_light.cpp).
 // No inverse trigonometry: llvmpipe's asin and atan are good to ~1e-4 only.
@@ -95,30 +104,25 @@ vec3 capRadiance(vec3 c, float capU, float capPower, vec3 we) {
     vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
     // The whole cap above the horizon (its lowest point at theta_c + alpha < 90 deg): every ray's share is 1.
     bool whole = c.z * (1.0 - capU) > s * sqrt(capU * (2.0 - capU));
-    // uRings -1 (render::kCentreRule): the centre alone, weighed by the shares of 4 rays (one BRDF evaluation).
+    // uRings -1 (render::kCentreRule): the centre alone, weighed by the shares of 4 rays; one call of brdf()
+    // for both rules (a second call site costs the table's lookup 10% in llvmpipe).
     bool centre = uRings < 0;
-    int m = centre ? 4 : 4 * uRings;
+    int m = centre ? 4 : 4 * uRings, n = centre ? 1 : uRings;
+    float centreShare = whole ? 4.0 : 0.0;
+    for (int j = 0; j < 4 && centre && !whole; ++j) centreShare += rayShare(uAzimuth[j], a, c, capU);
     vec3 sum = vec3(0.0);
-    float shares = whole ? float(m) : 0.0;
-    for (int j = 0; j < m && !(centre && whole); ++j) {
+    for (int j = 0; j < (centre ? 1 : m); ++j) {
         vec2 cs = uAzimuth[j];
-        float share = 1.0;
-        if (!whole) {  // the horizon ends the ray where 1 - cos(beta) = c.z^2 / (r (r - k)), k = cos(phi) a.z < 0
-            float k = cs.x * a.z, r = sqrt(k * k + c.z * c.z);  // (render::horizonEdge)
-            float edge = k >= 0.0 ? capU : (r > 0.0 ? c.z * c.z / (r * (r - k)) : 0.0);
-            share = edge >= capU ? 1.0 : edge / capU;  // uMax / capU, without 0 / 0 for a cap float holds as 0
-            shares += share;
-        }
-        if (centre) continue;
+        float share = centre ? centreShare : (whole ? 1.0 : rayShare(cs, a, c, capU));
         float uMax = capU * share;
         vec3 d = cs.x * a + cs.y * b;
-        for (int i = 0; i < uRings; ++i) {
-            float u = uMax * uRingX[i];
-            vec3 wi = (1.0 - u) * c + sqrt(u * (2.0 - u)) * d;
-            if (wi.z > 0.0) sum += (uRingW[i] * share * wi.z) * brdf(wi, we);
+        for (int i = 0; i < n; ++i) {
+            float u = centre ? 0.0 : uMax * uRingX[i];
+            vec3 wi = centre ? c : (1.0 - u) * c + sqrt(u * (2.0 - u)) * d;
+            float w = centre ? share : uRingW[i] * share;
+            if (wi.z > 0.0) sum += (w * wi.z) * brdf(wi, we);
         }
     }
-    if (centre && c.z > 0.0 && shares > 0.0) sum = (shares * c.z) * brdf(c, we);
     return sum * (capPower * 6.283185307 / float(m));
 }
 #endif
