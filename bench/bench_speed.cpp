@@ -104,12 +104,13 @@ BENCHMARK(BM_LtcFit)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealT
 void BM_TableRow(benchmark::State& state) {
     const int kind = int(state.range(0));
     const double alpha = double(state.range(2)) / 1000;
-    const std::string a = std::to_string(alpha).substr(0, 3);
+    char a[16];
+    std::snprintf(a, sizeof a, "%g", alpha);
     scene::Values v = kind % 2 ? values({{"measured", ggxTable(alpha)}, {"size", "512"}})
                                : values({{"model", "ggx"}, {"roughness", a}, {"size", "512"}});
     if (kind >= 2) v.set("light", "disk");
     timeRows(state, v,
-             std::string(kind % 2 ? "MERL table of GGX " + a + " + table_error" : "analytic GGX " + a) +
+             (kind % 2 ? "MERL table of GGX " + std::string(a) + " + table_error" : "analytic GGX " + std::string(a)) +
                  (kind >= 2 ? ", sun disk" : ", directional"));
 }
 BENCHMARK(BM_TableRow)->ArgsProduct({{0, 1, 2, 3}, {1, 0}, {100, 200}})->Unit(benchmark::kMillisecond)->UseRealTime();

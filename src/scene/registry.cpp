@@ -830,7 +830,8 @@ std::vector<Param> build() {
     {  // the user's 0 (the centre's rule) is render::kCentreRule: the field's 0 means auto
         Param& e = p.back();
         e.write = [](Resolved& r, const std::string& t) {
-            r.scene.light.rings = t == "auto" ? 0 : parseAs<int>(t) == 0 ? render::kCentreRule : parseAs<int>(t);
+            const int n = t == "auto" ? 0 : parseAs<int>(t);
+            r.scene.light.rings = t == "auto" ? 0 : n == 0 ? render::kCentreRule : n;
         };
         e.read = [](const Resolved& r, bool) {
             const int n = r.scene.light.rings;

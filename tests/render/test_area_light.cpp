@@ -262,10 +262,10 @@ TEST_CASE("render::areaRadianceExact a table's kinks far from its lobe: the cap'
     ggx.roughness = 0.2;
     s.brdf.measured = std::make_shared<const brdf::merl::MeasuredBrdf>(brdf::merl::tabulate(ggx));
     s.light = diskLight(0.266, 60.0);
+    const render::LightCap cap = render::lightCap(s.light, dvec3(0.0));  // a disk's cap: the same everywhere
     double worst = 0;
     for (double r : {0.05, 0.1, 0.2}) {
         const dvec3 we = s.light.chart().direction(r, 0.3 * r);
-        const render::LightCap cap = render::lightCap(s.light, dvec3(0.0));
         auto f = [&](const dvec3& wi) { return wi.z > 0 ? brdf::radiance(s.brdf, wi, we, cap.radiance) : dvec3(0.0); };
         const dvec3 exact = render::areaRadianceExact(s, dvec3(0.0), we);
         const render::CapIntegral polar = render::capExact(cap, dvec3(-we.x, -we.y, we.z), 2e-3 * we.z, f);
