@@ -104,26 +104,38 @@ vec3 capRadiance(vec3 c, float capU, float capPower, vec3 we) {
     vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
     // The whole cap above the horizon (its lowest point at theta_c + alpha < 90 deg): every ray's share is 1.
     bool whole = c.z * (1.0 - capU) > s * sqrt(capU * (2.0 - capU));
-    // uRings -1 (render::kCentreRule): the centre alone, weighed by the shares of 4 rays; one call of brdf()
-    // for both rules (a second call site costs the table's lookup 10% in llvmpipe).
-    bool centre = uRings < 0;
-    int m = centre ? 4 : 4 * uRings, n = centre ? 1 : uRings;
-    float centreShare = whole ? 4.0 : 0.0;
-    for (int j = 0; j < 4 && centre && !whole; ++j) centreShare += rayShare(uAzimuth[j], a, c, capU);
+    // The rule's size is fixed in the program where that pays (render/renderer.cpp, ruleDefine): llvmpipe runs a
+    // loop of uniform length as a loop.
+#if defined(HILITE_CENTRE_RULE)
+    // render::kCentreRule (light_rings 0): the centre alone, weighed by the shares of the 1-ring rule's 4 rays.
+    float share = 4.0;
+    if (!whole) {
+        share = 0.0;
+        for (int j = 0; j < 4; ++j) share += rayShare(uAzimuth[j], a, c, capU);
+    }
+    vec3 sum = c.z > 0.0 ? (share * c.z) * brdf(c, we) : vec3(0.0);
+    return sum * (capPower * 6.283185307 / 4.0);
+#else
+#if defined(HILITE_RULE_RINGS)
+    const int rings = HILITE_RULE_RINGS;
+#else
+    int rings = uRings;  // (uRings >= 1 here)
+#endif
+    int m = 4 * rings;
     vec3 sum = vec3(0.0);
-    for (int j = 0; j < (centre ? 1 : m); ++j) {
+    for (int j = 0; j < m; ++j) {
         vec2 cs = uAzimuth[j];
-        float share = centre ? centreShare : (whole ? 1.0 : rayShare(cs, a, c, capU));
+        float share = whole ? 1.0 : rayShare(cs, a, c, capU);
         float uMax = capU * share;
         vec3 d = cs.x * a + cs.y * b;
-        for (int i = 0; i < n; ++i) {
-            float u = centre ? 0.0 : uMax * uRingX[i];
-            vec3 wi = centre ? c : (1.0 - u) * c + sqrt(u * (2.0 - u)) * d;
-            float w = centre ? share : uRingW[i] * share;
-            if (wi.z > 0.0) sum += (w * wi.z) * brdf(wi, we);
+        for (int i = 0; i < rings; ++i) {
+            float u = uMax * uRingX[i];
+            vec3 wi = (1.0 - u) * c + sqrt(u * (2.0 - u)) * d;
+            if (wi.z > 0.0) sum += (uRingW[i] * share * wi.z) * brdf(wi, we);
         }
     }
     return sum * (capPower * 6.283185307 / float(m));
+#endif
 }
 #endif
 

@@ -2,10 +2,13 @@
 // convergence to the point light (the seed's limit) with its order, the tiny disk as the directional light, and
 // the sun's broadening of a narrow lobe with its diagnoses.
 
+#include "gl/program.hpp"
 #include "hilite/measurement/measure_scene.hpp"
 #include "hilite/render/area_light.hpp"
 #include "measurement/diagnose.hpp"
 #include "render/cpu_view.hpp"
+#include "render/renderer.hpp"
+#include "render/shader_source.hpp"
 
 #include "support/gl_fixture.hpp"
 
@@ -142,6 +145,28 @@ TEST_CASE("render::Renderer the centre's rule (light_rings 0): GL and the CPU ru
     const float factor = float(2.0 / (1.0 + std::cos(deg2rad(0.266))));
     for (size_t i = 0; i < b.data.size(); i += 4) b.data[i] *= factor;
     CHECK(maxRelative(a, b) < 1e-5);
+}
+
+TEST_CASE(
+    "render::Renderer the rule fixed in its program (the centre, 1 ring) and read from uRings agree with the CPU") {
+    // llvmpipe runs a loop of uniform length as a loop: the centre's rule and 1 ring's 4 points have programs of
+    // their own (HILITE_CENTRE_RULE, HILITE_RULE_RINGS 1); 2 rings and more read uRings.
+    auto& env = test::glEnv();
+    for (const int rings : {render::kCentreRule, 1, 2, 3}) {
+        CAPTURE(rings);
+        for (const render::Scene& s : {withDisk(ggx(0.1, 60), 0.266, rings), withDisk(ggx(0.3, 87), 8.0, rings)}) {
+            CAPTURE(s.light.incidenceDeg);
+            const std::string glsl =
+                gl::joinSources(render::programSources(s, render::Output::Measure, render::shaderDirectory()).fragment);
+            CHECK((glsl.find("#define HILITE_CENTRE_RULE 1") != std::string::npos) == (rings == render::kCentreRule));
+            CHECK((glsl.find("#define HILITE_RULE_RINGS 1") != std::string::npos) == (rings == 1));
+            const PinholeCamera cam = measurement::measurementCamera(s, s.light.chart().wr(), 40.0, 48, 48);
+            ImageF gl, cpu;
+            env.renderer->render(s, cam, render::Output::Measure, gl);
+            render::renderMeasureCpu(s, cam, cpu);
+            CHECK(maxRelative(gl, cpu) < 1e-4);
+        }
+    }
 }
 
 TEST_CASE("render::Renderer the sphere light converges to the point light as R -> 0, second order") {
