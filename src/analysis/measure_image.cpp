@@ -7,6 +7,7 @@
 //   Two short walks through the peak give the sub-pixel widths.
 // Pass 1 is bound by memory bandwidth (the image is 4 MB at 512^2); pass 2 by the moment sums.
 
+#include "analysis/image_variants.hpp"
 #include "hilite/analysis/highlight.hpp"
 
 #include "hilite/core/error.hpp"
@@ -19,6 +20,7 @@
 #include <limits>
 #include <memory>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -354,34 +356,37 @@ Around around(const Pixels& px, const std::vector<RunMask>& masks, int y, int r)
     return a;
 }
 
-/// Pass 2 on one run: flags from the masks, then the moment sums of its in and contour pixels.
-void scanRun(const Pixels& px, const std::vector<RunMask>& masks, int y, int r, const Threshold& th, bool subpixel,
-             dvec2 shift, RegionSums& sums) {
+/// Pass 2 on one run: flags from the masks, then the moment sums of its in and contour pixels, of those in
+/// `only`'s bits (ImageVariants sums a run's pixels in two parts). Returns those of its contour pixels.
+uint32_t scanRun(const Pixels& px, const std::vector<RunMask>& masks, int y, int r, const Threshold& th, bool subpixel,
+                 dvec2 shift, RegionSums& sums, uint32_t only = ~0u) {
     const RunMask c = masks[size_t(y) * size_t(px.runs()) + size_t(r)];
     const Around a = around(px, masks, y, r);
     const int x0 = r * kRun, n = px.runLength(r);
     const uint32_t sky = (a.insideL & ~a.visL) | (a.insideR & ~a.visR) | (a.insideD & ~a.visD) | (a.insideU & ~a.visU);
     const uint32_t rim =
         (y == 0 || y == px.height - 1) ? ~0u : (x0 == 0 ? 1u : 0u) | (x0 + n == px.width ? 1u << (n - 1) : 0u);
-    sums.pixels += bitCount(c.in);
-    sums.touchesSky = sums.touchesSky || (c.in & sky) != 0;
-    sums.touchesBorder = sums.touchesBorder || (c.in & rim) != 0;
+    const uint32_t in = c.in & only;
+    sums.pixels += bitCount(in);
+    sums.touchesSky = sums.touchesSky || (in & sky) != 0;
+    sums.touchesBorder = sums.touchesBorder || (in & rim) != 0;
     // Contour: visible, with a visible 4-neighbour on the other side of T.
-    const uint32_t contour = subpixel ? c.vis & ((a.visL & (a.inL ^ c.in)) | (a.visR & (a.inR ^ c.in)) |
-                                                 (a.visD & (a.inD ^ c.in)) | (a.visU & (a.inU ^ c.in)))
+    const uint32_t contour = subpixel ? only & c.vis &
+                                            ((a.visL & (a.inL ^ c.in)) | (a.visR & (a.inR ^ c.in)) |
+                                             (a.visD & (a.inD ^ c.in)) | (a.visU & (a.inU ^ c.in)))
                                       : 0u;
     const auto covered = [&](int x) { return contourFraction(px, x, y, th.T); };
-    accumulate(px, x0, y, c.in & ~contour, shift, WholePixel{}, sums.m);
+    accumulate(px, x0, y, in & ~contour, shift, WholePixel{}, sums.m);
     if (contour) accumulate(px, x0, y, contour, shift, covered, sums.m);
+    return contour;
 }
 
 /// Pass 2 over the runs that hold an L >= T (and, with sub-pixel coverage, their neighbours).
-RegionSums scanRegion(const Pixels& px, const Survey& s, const Threshold& th, bool subpixel) {
+RegionSums scanRegion(const Pixels& px, const Survey& s, const Threshold& th, bool subpixel, dvec2 shift) {
     std::vector<char> active(s.runMax.size());
     for (size_t i = 0; i < active.size(); ++i) active[i] = s.runMax[i] >= th.Tf;
     if (subpixel) active = runsNear(px, active, 1);  // an outside contour pixel neighbours an inside one
     const std::vector<RunMask> masks = runMasks(px, active, th.Tf);
-    const dvec2 shift = px.uv(s.x, s.y);
     const int runs = px.runs();
     RegionSums sums;
     for (int y = 0; y < px.height; ++y)
@@ -449,15 +454,11 @@ void setWidths(Shape& s, const Pixels& px, int x, int y, double T) {
     s.fwhm_v_deg = rad2deg(rowsU ? alongCol : alongRow);
 }
 
-}  // namespace
-
-Shape measureImage(const float* pixels, int width, int height, const Options& opt) {
-    validate(opt);
-    if (pixels == nullptr || width <= 0 || height <= 0) throw InputError("measureImage: empty image");
-    std::unique_ptr<float[]> dense(new float[size_t(width) * size_t(height)]);  // filled by survey()
-    const Pixels px{pixels, width, height, dense.get()};
+/// measureImage after its survey: the flags, the region's moments and the widths. region(th, shift) gathers the
+/// region's sums at the threshold th about shift (the peak's (u, v), which it may replace).
+template <class Region>
+Shape finish(const Pixels& px, Survey& sv, const Options& opt, Region region) {
     Shape s;
-    Survey sv = survey(px);
     // Pixels past float's range describe no lobe (NaN counts as 0 below, inf swallows the threshold): name it.
     if (sv.nonFinite) {
         setUnmeasured(s, Flag::FloatOverflow);
@@ -476,9 +477,10 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     }
     locatePeak(px, sv);
     const Threshold th(opt.level > 0 ? opt.level : opt.threshold * double(sv.peak));
-    const RegionSums sums = scanRegion(px, sv, th, opt.subpixel);  // never empty: the peak pixel is in it
     const dvec2 peakUV = px.uv(sv.x, sv.y);
-    setEllipse(s, toMoments(sums.m, peakUV));
+    dvec2 shift = peakUV;
+    const RegionSums sums = region(th, shift);  // never empty: the peak pixel is in it
+    setEllipse(s, toMoments(sums.m, shift));
     s.peak = sv.peak;
     s.peak_u_deg = rad2deg(peakUV.x);
     s.peak_v_deg = rad2deg(peakUV.y);
@@ -493,6 +495,177 @@ Shape measureImage(const float* pixels, int width, int height, const Options& op
     if (s.minor_pixels < opt.minPixelsAcross) s.flags.insert(Flag::UnderResolved);
     if (double(sv.minVisible) >= th.T) s.flags.insert(Flag::CoversFrame);
     return s;
+}
+
+}  // namespace
+
+Shape measureImage(const float* pixels, int width, int height, const Options& opt) {
+    validate(opt);
+    if (pixels == nullptr || width <= 0 || height <= 0) throw InputError("measureImage: empty image");
+    std::unique_ptr<float[]> dense(new float[size_t(width) * size_t(height)]);  // filled by survey()
+    const Pixels px{pixels, width, height, dense.get()};
+    Survey sv = survey(px);
+    return finish(px, sv, opt,
+                  [&](const Threshold& th, dvec2& shift) { return scanRegion(px, sv, th, opt.subpixel, shift); });
+}
+
+ImageVariants::ImageVariants(const float* pixels, int width, int height)
+    : m_pixels(pixels), m_width(width), m_height(height) {
+    if (pixels == nullptr || width <= 0 || height <= 0) throw InputError("measureImage: empty image");
+    m_dense.resize(size_t(width) * size_t(height));
+    const Pixels px{pixels, width, height, m_dense.data()};
+    Survey sv = survey(px);
+    locatePeak(px, sv);
+    if (sv.x >= 0) m_peakPixel = px.index(sv.x, sv.y);
+    m_runMax = sv.runMax;
+    m_peak = sv.peak;
+    m_nonFinite = sv.nonFinite;
+}
+
+void ImageVariants::setChanged(std::vector<size_t> at, const Options& opt) {
+    validate(opt);
+    m_opt = opt;
+    m_at = std::move(at);
+    const size_t n = m_dense.size();
+    const Pixels px{m_pixels, m_width, m_height, m_dense.data()};
+    const int runs = px.runs();
+    std::vector<char> patched(n, 0);
+    // Per run, the bits of the pixels a variant changes or that read one as a 4-neighbour (the contour test and
+    // the covered share): the pixels whose sums are the variant's own.
+    m_dependent.assign(m_runMax.size(), 0u);
+    m_runs.clear();
+    auto depend = [&](int x, int y) {
+        if (x >= 0 && y >= 0 && x < m_width && y < m_height)
+            m_dependent[size_t(y) * size_t(runs) + size_t(x / kRun)] |= 1u << (x % kRun);
+    };
+    for (const size_t i : m_at) {
+        if (i >= n) throw InputError("measureImage: a variant's pixel lies outside the image");
+        patched[i] = 1;
+        const int x = int(i % size_t(m_width)), y = int(i / size_t(m_width));
+        m_runs.push_back(size_t(y) * size_t(runs) + size_t(x / kRun));
+        depend(x, y), depend(x - 1, y), depend(x + 1, y), depend(x, y - 1), depend(x, y + 1);
+    }
+    std::sort(m_runs.begin(), m_runs.end());
+    m_runs.erase(std::unique(m_runs.begin(), m_runs.end()), m_runs.end());
+    m_dependentRuns.clear();
+    for (size_t r = 0; r < m_dependent.size(); ++r)
+        if (m_dependent[r]) m_dependentRuns.push_back(r);
+    m_kept.resize(m_at.size());
+    for (size_t j = 0; j < m_at.size(); ++j) m_kept[j] = m_dense[m_at[j]];
+    // What the pixels left as they are hold: their smallest visible L (survey: L >= 0 there, -1 elsewhere), and
+    // whether one is past float's range (only where the survey found one).
+    m_nonFiniteKept = false;
+    if (m_nonFinite)
+        for (size_t i = 0; i < n; ++i)
+            m_nonFiniteKept = m_nonFiniteKept || (!patched[i] && m_dense[i] >= 0.f && !std::isfinite(m_pixels[4 * i]));
+
+    // The fixed pixels' sums (every other pixel's), gathered once here at the image's threshold and about its
+    // peak: no variant changes what scanRun reads for them.
+    m_fixed = {};
+    m_fixedValid = false;
+    if (m_nonFinite || !(m_peak > 0.f)) {
+        float lo = std::numeric_limits<float>::infinity();
+        for (size_t i = 0; i < n; ++i) lo = std::min(lo, patched[i] || m_dense[i] < 0.f ? lo : m_dense[i]);
+        m_minKept = lo;
+        return;
+    }
+    Survey sv;
+    sv.runMax = m_runMax;
+    sv.peak = m_peak;
+    locatePeak(px, sv);
+    m_shift = px.uv(sv.x, sv.y);
+    const Threshold th(opt.level > 0 ? opt.level : opt.threshold * double(m_peak));
+    m_Tf = th.Tf;
+    std::vector<char> active(m_runMax.size());
+    for (size_t i = 0; i < active.size(); ++i) active[i] = m_runMax[i] >= th.Tf;
+    if (opt.subpixel) active = runsNear(px, active, 1);
+    const std::vector<RunMask> masks = runMasks(px, active, th.Tf);
+    RegionSums sums;
+    uint32_t contour = 0;
+    for (size_t i = 0; i < active.size(); ++i)
+        if (active[i])
+            contour |= scanRun(px, masks, int(i / size_t(runs)), int(i % size_t(runs)), th, opt.subpixel, m_shift, sums,
+                               ~m_dependent[i]);
+    m_fixed = {sums.m.s0, sums.m.su, sums.m.sv, sums.m.suu, sums.m.suv, sums.m.svv};
+    m_fixedPixels = sums.pixels;
+    m_fixedSky = sums.touchesSky;
+    m_fixedBorder = sums.touchesBorder;
+    m_fixedContour = contour != 0;
+    // The L of the pixels left as they are nearest the threshold on either side: a variant's threshold leaves
+    // each on its side (and so every fixed pixel's contour test) while it lies in (below, above].
+    float lo = std::numeric_limits<float>::infinity(), below = -lo, above = lo;
+    for (size_t i = 0; i < n; ++i) {
+        const float L = patched[i] ? -1.f : m_dense[i];  // -1: the sky, or a pixel a variant changes
+        lo = std::min(lo, L < 0.f ? lo : L);
+        below = std::max(below, L < th.Tf ? L : below);
+        above = std::min(above, L < th.Tf ? above : L);
+    }
+    m_minKept = lo, m_below = below, m_above = above;
+    m_fixedValid = true;
+}
+
+Shape ImageVariants::measure(const float* values, size_t stride) {
+    std::vector<float>& dense = m_dense;  // with the variant's L written in, and taken out again below
+    const Pixels px{m_pixels, m_width, m_height, dense.data()};
+    // survey()'s values for the patched pixels, then for the runs that hold them.
+    Survey sv;
+    sv.minVisible = m_minKept;
+    sv.nonFinite = m_nonFiniteKept;
+    for (size_t j = 0; j < m_at.size(); ++j) {
+        const size_t i = m_at[j];
+        if (!(m_pixels[4 * i + 3] > 0.f)) continue;  // a pixel that sees no surface keeps no L
+        const float raw = values[j * stride], L = std::max(0.f, raw);
+        sv.nonFinite = sv.nonFinite || !std::isfinite(raw);
+        dense[i] = L;
+        sv.minVisible = std::min(sv.minVisible, L);
+    }
+    sv.runMax = m_runMax;
+    const int runs = px.runs();
+    for (const size_t r : m_runs) {
+        const int y = int(r / size_t(runs)), x0 = int(r % size_t(runs)) * kRun;
+        float m = -1.f;
+        for (int x = x0; x < x0 + px.runLength(x0 / kRun); ++x) m = std::max(m, px.L(x, y));
+        sv.runMax[r] = m;
+    }
+    for (const float m : sv.runMax) sv.peak = std::max(sv.peak, m);
+    const Shape shape = finish(px, sv, m_opt, [&](const Threshold& th, dvec2& shift) {
+        // The fixed pixels' sums hold where this threshold leaves every pixel left as it is on its side, and, where
+        // it is not the image's own, the fixed pixels hold no contour pixel (whose covered share it would move).
+        const bool fixedHolds =
+            m_fixedValid && (th.Tf == m_Tf || (!m_fixedContour && m_below < th.Tf && th.Tf <= m_above));
+        if (!fixedHolds) return scanRegion(px, sv, th, m_opt.subpixel, shift);
+        ++m_fixedUsed;
+        shift = m_shift;
+        RegionSums sums;
+        sums.m = Sums{m_fixed[0], m_fixed[1], m_fixed[2], m_fixed[3], m_fixed[4], m_fixed[5]};
+        sums.pixels = m_fixedPixels;
+        sums.touchesSky = m_fixedSky;
+        sums.touchesBorder = m_fixedBorder;
+        // The variant's pixels, in the runs scanRegion would visit (an L >= T within one run with sub-pixel
+        // coverage), with the masks of each and of its 4-neighbours.
+        std::vector<RunMask> masks(sv.runMax.size());
+        std::vector<char> masked(sv.runMax.size(), 0);
+        const int reach = m_opt.subpixel ? 1 : 0;
+        for (const size_t r : m_dependentRuns) {
+            const int y = int(r / size_t(runs)), x = int(r % size_t(runs));
+            bool active = false;
+            for (int yy = std::max(0, y - reach); yy <= std::min(px.height - 1, y + reach) && !active; ++yy)
+                for (int xx = std::max(0, x - reach); xx <= std::min(runs - 1, x + reach); ++xx)
+                    active = active || sv.runMax[size_t(yy) * size_t(runs) + size_t(xx)] >= th.Tf;
+            if (!active) continue;
+            for (const auto& [dy, dx] : {std::pair{0, 0}, {0, -1}, {0, 1}, {-1, 0}, {1, 0}}) {
+                const int yy = y + dy, xx = x + dx;
+                if (yy < 0 || yy >= px.height || xx < 0 || xx >= runs) continue;
+                const size_t q = size_t(yy) * size_t(runs) + size_t(xx);
+                if (!masked[q]) masks[q] = runMask(dense.data() + px.index(xx * kRun, yy), px.runLength(xx), th.Tf);
+                masked[q] = 1;
+            }
+            scanRun(px, masks, y, x, th, m_opt.subpixel, shift, sums, m_dependent[r]);
+        }
+        return sums;
+    });
+    for (size_t j = 0; j < m_at.size(); ++j) dense[m_at[j]] = m_kept[j];
+    return shape;
 }
 
 }  // namespace hilite::analysis
