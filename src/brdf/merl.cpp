@@ -424,25 +424,32 @@ void HalvesLuminance::evaluate(const dvec3& wi, const dvec3& wo, double out[kTab
     const HalfDiff a = toHalfDiff(wi, wo);
     const Coords at = coordsOf(a.thetaH, a.thetaD, a.phiD);
     const AxisWeights &d = at.d, &p = at.p;
-    bool complete[kTables];
-    std::fill(complete, complete + kTables, true);
+    // All 8 floats of a bin at once (the last is padding), and each table's smallest value among the taps
+    // weighed: a table is complete where that is >= 0 (no bin without data, -1).
+    double total[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    float least[8];
+    std::fill(least, least + 8, std::numeric_limits<float>::infinity());
     for (int i = 0; i < 4; ++i)
         for (int b = 0; b < 2; ++b)
             for (int c = 0; c < 2; ++c) {
                 const double w = at.h.w[i] * (b ? d.t : 1 - d.t) * (c ? p.t : 1 - p.t);
                 if (w == 0.0) continue;
                 const float* q = &m_lum[8 * flatIndex(at.h.bin[i], b ? d.hi : d.lo, c ? p.hi : p.lo)];
-                for (std::size_t k = 0; k < kTables; ++k) {
-                    complete[k] = complete[k] && q[k] >= 0.f;
-                    out[k] += w * double(q[k]);
+                for (std::size_t k = 0; k < 8; ++k) {
+                    least[k] = std::min(least[k], q[k]);
+                    total[k] += w * double(q[k]);
                 }
             }
+    bool complete[kTables], all = true;
+    for (std::size_t k = 0; k < kTables; ++k) {
+        complete[k] = least[k] >= 0.f;
+        all = all && complete[k];
+        out[k] = complete[k] ? std::max(total[k], 0.0) : 0.0;
+    }
+    if (all) return;
     const AxisWeights h = axisWeights(at.uh, kThetaHBins, false);
     for (std::size_t k = 0; k < kTables; ++k) {
-        if (complete[k]) {
-            out[k] = std::max(out[k], 0.0);
-            continue;
-        }
+        if (complete[k]) continue;
         double sum = 0, weight = 0;  // as gatherFrom's fallback
         for (int i = 0; i < 2; ++i)
             for (int b = 0; b < 2; ++b)
