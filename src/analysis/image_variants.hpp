@@ -28,7 +28,8 @@ public:
     /// An L of a pixel that sees the surface is an inf or NaN.
     bool nonFinite() const { return m_nonFinite; }
 
-    /// The pixels whose L the variants change (the same for every variant), and the measurement's options.
+    /// The pixels whose L the variants change (the same for every variant), and the measurement's options (until
+    /// it is called: no pixel, the default options).
     void setChanged(std::vector<size_t> at, const Options& opt);
     /// measureImage of the image with L = values[j * stride] at pixel at[j] of setChanged's (ignored where
     /// w <= 0): the same shape to rounding (the pixels that no variant changes are summed once, about the image's

@@ -520,6 +520,9 @@ ImageVariants::ImageVariants(const float* pixels, int width, int height)
     m_runMax = sv.runMax;
     m_peak = sv.peak;
     m_nonFinite = sv.nonFinite;
+    // No pixel changed yet: measure gives measureImage's shape of the image itself (default options).
+    m_minKept = sv.minVisible;
+    m_nonFiniteKept = sv.nonFinite;
 }
 
 void ImageVariants::setChanged(std::vector<size_t> at, const Options& opt) {

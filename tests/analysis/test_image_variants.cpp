@@ -112,6 +112,7 @@ TEST_CASE("analysis::ImageVariants: each variant's shape is measureImage's of it
             CHECK(measureImage(img.data.data(), W, H, opt).flags.empty());
         }
     ImageVariants variants(img.data.data(), W, H);
+    checkSame(variants.measure(nullptr, 0), measureImage(img.data.data(), W, H, Options{}));  // nothing changed yet
     CHECK_THROWS_AS(variants.setChanged({n}, Options{}), InputError);
     CHECK_THROWS_AS(ImageVariants(nullptr, W, H), InputError);
 }
