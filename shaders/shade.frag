@@ -104,7 +104,7 @@ vec3 capRadiance(vec3 c, float capU, float capPower, vec3 we) {
     vec3 b = s > 0.0 ? vec3(-c.y / s, c.x / s, 0.0) : vec3(0.0, 1.0, 0.0);
     // The whole cap above the horizon (its lowest point at theta_c + alpha < 90 deg): every ray's share is 1.
     bool whole = c.z * (1.0 - capU) > s * sqrt(capU * (2.0 - capU));
-    // The rule's size is fixed in the program where that pays (render/renderer.cpp, ruleDefine): llvmpipe runs a
+    // The rule's size is fixed in the program where that pays (render/renderer.cpp, ruleProgram): llvmpipe runs a
     // loop of uniform length as a loop.
 #if defined(HILITE_CENTRE_RULE)
     // render::kCentreRule (light_rings 0): the centre alone, weighed by the shares of the 1-ring rule's 4 rays.

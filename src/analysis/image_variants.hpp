@@ -1,7 +1,8 @@
 #pragma once
 // measureImage of variants of one image that differ from it in L at a few pixels (table_error's half tables,
-// measurement/in_frame_twin.cpp): the image surveyed once, each variant's L written into a copy of the survey's
-// dense L, so that the 16-byte pixels are neither copied nor read again per variant.
+// measurement/in_frame_twin.cpp): the image surveyed once, each variant's L written into the survey's dense L and
+// taken out again (the 16-byte pixels are neither copied nor read again per variant), and the moment sums of the
+// pixels no variant changes gathered once.
 
 #include "hilite/analysis/highlight.hpp"
 #include "hilite/core/math.hpp"

@@ -381,11 +381,17 @@ uint32_t scanRun(const Pixels& px, const std::vector<RunMask>& masks, int y, int
     return contour;
 }
 
-/// Pass 2 over the runs that hold an L >= T (and, with sub-pixel coverage, their neighbours).
-RegionSums scanRegion(const Pixels& px, const Survey& s, const Threshold& th, bool subpixel, dvec2 shift) {
-    std::vector<char> active(s.runMax.size());
-    for (size_t i = 0; i < active.size(); ++i) active[i] = s.runMax[i] >= th.Tf;
+/// The runs pass 2 visits: those that hold an L >= T (and, with sub-pixel coverage, their neighbours).
+std::vector<char> activeRuns(const Pixels& px, const std::vector<float>& runMax, const Threshold& th, bool subpixel) {
+    std::vector<char> active(runMax.size());
+    for (size_t i = 0; i < active.size(); ++i) active[i] = runMax[i] >= th.Tf;
     if (subpixel) active = runsNear(px, active, 1);  // an outside contour pixel neighbours an inside one
+    return active;
+}
+
+/// Pass 2 over activeRuns.
+RegionSums scanRegion(const Pixels& px, const Survey& s, const Threshold& th, bool subpixel, dvec2 shift) {
+    const std::vector<char> active = activeRuns(px, s.runMax, th, subpixel);
     const std::vector<RunMask> masks = runMasks(px, active, th.Tf);
     const int runs = px.runs();
     RegionSums sums;
@@ -579,9 +585,7 @@ void ImageVariants::setChanged(std::vector<size_t> at, const Options& opt) {
     m_shift = px.uv(sv.x, sv.y);
     const Threshold th(opt.level > 0 ? opt.level : opt.threshold * double(m_peak));
     m_Tf = th.Tf;
-    std::vector<char> active(m_runMax.size());
-    for (size_t i = 0; i < active.size(); ++i) active[i] = m_runMax[i] >= th.Tf;
-    if (opt.subpixel) active = runsNear(px, active, 1);
+    const std::vector<char> active = activeRuns(px, m_runMax, th, opt.subpixel);
     const std::vector<RunMask> masks = runMasks(px, active, th.Tf);
     RegionSums sums;
     uint32_t contour = 0;
@@ -644,27 +648,15 @@ Shape ImageVariants::measure(const float* values, size_t stride) {
         sums.pixels = m_fixedPixels;
         sums.touchesSky = m_fixedSky;
         sums.touchesBorder = m_fixedBorder;
-        // The variant's pixels, in the runs scanRegion would visit (an L >= T within one run with sub-pixel
-        // coverage), with the masks of each and of its 4-neighbours.
-        std::vector<RunMask> masks(sv.runMax.size());
-        std::vector<char> masked(sv.runMax.size(), 0);
-        const int reach = m_opt.subpixel ? 1 : 0;
-        for (const size_t r : m_dependentRuns) {
-            const int y = int(r / size_t(runs)), x = int(r % size_t(runs));
-            bool active = false;
-            for (int yy = std::max(0, y - reach); yy <= std::min(px.height - 1, y + reach) && !active; ++yy)
-                for (int xx = std::max(0, x - reach); xx <= std::min(runs - 1, x + reach); ++xx)
-                    active = active || sv.runMax[size_t(yy) * size_t(runs) + size_t(xx)] >= th.Tf;
-            if (!active) continue;
-            for (const auto& [dy, dx] : {std::pair{0, 0}, {0, -1}, {0, 1}, {-1, 0}, {1, 0}}) {
-                const int yy = y + dy, xx = x + dx;
-                if (yy < 0 || yy >= px.height || xx < 0 || xx >= runs) continue;
-                const size_t q = size_t(yy) * size_t(runs) + size_t(xx);
-                if (!masked[q]) masks[q] = runMask(dense.data() + px.index(xx * kRun, yy), px.runLength(xx), th.Tf);
-                masked[q] = 1;
-            }
-            scanRun(px, masks, y, x, th, m_opt.subpixel, shift, sums, m_dependent[r]);
-        }
+        // The variant's pixels, in the runs scanRegion would visit, with the masks of those runs and their
+        // neighbours.
+        std::vector<char> active = activeRuns(px, sv.runMax, th, m_opt.subpixel);
+        for (size_t r = 0; r < active.size(); ++r) active[r] = active[r] && m_dependent[r] != 0;
+        const std::vector<RunMask> masks = runMasks(px, active, th.Tf);
+        for (const size_t r : m_dependentRuns)
+            if (active[r])
+                scanRun(px, masks, int(r / size_t(runs)), int(r % size_t(runs)), th, m_opt.subpixel, shift, sums,
+                        m_dependent[r]);
         return sums;
     });
     for (size_t j = 0; j < m_at.size(); ++j) dense[m_at[j]] = m_kept[j];

@@ -70,8 +70,13 @@ std::string lightKey(LightType light) {
 /// cache's key suffix ("" for a rule read from uRings). llvmpipe runs a loop of uniform length as a loop: drawn
 /// inside the rings' loops, the cap's centre alone took 2.1x as long as in a program of its own (a MERL table
 /// under the sun, 512^2 at 60 deg: 6.6 -> 3.1 ms), 1 ring's 4 points 1.7x (17.4 -> 10.5 ms; analytic GGX 0.1
-/// 4.7 -> 2.9 ms); 2 rings and more gained under 10% (a program per ring count is not worth its compile).
-std::pair<std::string, std::string> ruleDefine(const Scene& scene) {
+/// 4.7 -> 2.9 ms); 2 rings and more gained under 20%, and nothing on a table (a program per ring count is not
+/// worth its compile).
+struct RuleProgram {
+    std::string define, key;
+};
+
+RuleProgram ruleProgram(const Scene& scene) {
     if (!scene.light.area() || (scene.light.ltc && !scene.brdfFile)) return {};
     const int n = lightRings(scene);
     if (n == kCentreRule) return {"#define HILITE_CENTRE_RULE 1\n", "+centre"};
@@ -132,7 +137,7 @@ ProgramSources programSources(const Scene& scene, Output out, const std::string&
         src = assembleBrdfFile(*scene.brdfFile, out, shaderDir);
         src.fragment.front().text += lightDefine(scene.light.type);
     }
-    src.fragment.front().text += ruleDefine(scene).first;
+    src.fragment.front().text += ruleProgram(scene).define;
     return src;
 }
 
@@ -292,7 +297,7 @@ const gl::Program& Renderer::program(const brdf::Params& p, Output out, LightTyp
 
 const gl::Program& Renderer::program(const Scene& scene, Output out) {
     const bool ltc = !scene.brdfFile && scene.light.ltc && scene.light.area();  // by linearly transformed cosines
-    const std::string rule = ruleDefine(scene).second;
+    const std::string rule = ruleProgram(scene).key;
     if (!scene.brdfFile && (ltc || !rule.empty())) {
         const std::string key = effectKey(scene.brdf, out) + lightKey(scene.light.type) +
                                 (scene.surface.bumps ? "+bumps" : "") + (ltc ? "+ltc" : rule);
