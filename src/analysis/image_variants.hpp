@@ -34,12 +34,17 @@ public:
     void setChanged(std::vector<size_t> at, const Options& opt);
     /// measureImage of the image with L = values[j * stride] at pixel at[j] of setChanged's (ignored where
     /// w <= 0): the same shape to rounding (the pixels that no variant changes are summed once, about the image's
-    /// peak). One thread at a time.
+    /// peak). One thread at a time (measureEach runs two).
     Shape measure(const float* values, size_t stride);
-    /// How many measure calls added the fixed pixels' sums (the others summed their whole region).
+    /// measure of the variants at values + which[j] (each with `stride`), on two threads: the same shapes.
+    std::vector<Shape> measureEach(const float* values, size_t stride, const std::vector<size_t>& which);
+    /// How many measures added the fixed pixels' sums (the others summed their whole region).
     long fixedSumsUsed() const { return m_fixedUsed; }
 
 private:
+    /// measure with `dense` (m_dense or a copy of it) to write the variant's L into; fixedUsed counts.
+    Shape measureIn(std::vector<float>& dense, const float* values, size_t stride, long& fixedUsed) const;
+
     const float* m_pixels;
     int m_width, m_height;
     std::vector<size_t> m_at, m_runs;      ///< the patched pixels; the runs of 32 that hold them
