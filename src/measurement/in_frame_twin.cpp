@@ -9,9 +9,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace hilite::measurement {
 
@@ -21,10 +26,48 @@ namespace {
 /// the level): measureImage reads a contour pixel's 4-neighbours to place the contour in it, so they must hold the
 /// variant's L too.
 constexpr int kReach = 1;
+/// Pixels per run of a row that the scans skip or visit whole.
+constexpr int kRun = 32;
 /// Rounds of asking the twins about pixels that the changes found so far could move.
 constexpr size_t kRounds = 4;
 /// Beyond this share of the peak a variant is not "a little different": it is rendered.
 constexpr double kMaxChange = 0.1;
+
+/// Bit x: lo <= c[x] <= hi, of the n <= kRun values c (four compares at a time: the scans below test every pixel of
+/// the runs they visit).
+uint32_t bitsWithin(const float* c, int n, float lo, float hi) {
+    uint32_t bits = 0;
+    int x = 0;
+#if defined(__SSE2__)
+    const __m128 l = _mm_set1_ps(lo), h = _mm_set1_ps(hi);
+    for (; x + 4 <= n; x += 4) {
+        const __m128 v = _mm_loadu_ps(c + x);
+        bits |= uint32_t(_mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(v, l), _mm_cmple_ps(v, h)))) << x;
+    }
+#endif
+    for (; x < n; ++x) bits |= uint32_t(c[x] >= lo && c[x] <= hi) << x;
+    return bits;
+}
+
+/// The smallest and the largest of the n >= 1 values c.
+std::pair<float, float> extremes(const float* c, int n) {
+    float lo = c[0], hi = c[0];
+    int x = 0;
+#if defined(__SSE2__)
+    if (n >= 4) {
+        __m128 l = _mm_loadu_ps(c), h = l;
+        for (x = 4; x + 4 <= n; x += 4) {
+            const __m128 v = _mm_loadu_ps(c + x);
+            l = _mm_min_ps(l, v), h = _mm_max_ps(h, v);
+        }
+        alignas(16) float ls[4], hs[4];
+        _mm_store_ps(ls, l), _mm_store_ps(hs, h);
+        for (int k = 0; k < 4; ++k) lo = std::min(lo, ls[k]), hi = std::max(hi, hs[k]);
+    }
+#endif
+    for (; x < n; ++x) lo = std::min(lo, c[x]), hi = std::max(hi, c[x]);
+    return {lo, hi};
+}
 
 }  // namespace
 
@@ -92,36 +135,60 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
     if (image.nonFinite() || !(peak > 0)) return out;
     auto L = [&](size_t i) { return double(lum[i]); };
 
+    // Each run of kRun pixels of a row: its smallest and largest L (-1: the sky), so that the scans below visit only
+    // the runs that can hold what they look for (each whole-image pass was 0.1 ms; a round took four).
+    const int runs = (W + kRun - 1) / kRun;
+    const size_t runCount = size_t(runs) * size_t(H);
+    auto runOf = [&](size_t i) { return (i / size_t(W)) * size_t(runs) + (i % size_t(W)) / size_t(kRun); };
+    auto runLength = [&](int r) { return std::min(kRun, W - r * kRun); };
+    std::vector<float> runLo(runCount), runHi(runCount);
+    for (int y = 0; y < H; ++y)
+        for (int r = 0; r < runs; ++r) {
+            const auto [lo, hi] = extremes(&lum[size_t(y) * size_t(W) + size_t(r * kRun)], runLength(r));
+            runLo[size_t(y) * size_t(runs) + size_t(r)] = lo, runHi[size_t(y) * size_t(runs) + size_t(r)] = hi;
+        }
+
     // The band: the contour's pixels (a 4-neighbour on the other side of the level: measureImage's contour test)
     // and their 4-neighbours (kReach; what its covered share of a contour pixel reads). The 8-neighbourhoods
     // asked 4,908 pixels at 60 deg where these are 3,656 (table_error the same to 4 digits or more).
     const double level = like.level > 0 ? like.level : setup.options.threshold * peak;
-    std::vector<char> in(n), band(n, 0), mark(n, 0);  // mark: a 4-neighbour on the other side
-    for (size_t i = 0; i < n; ++i) in[i] = double(lum[i]) >= level;
-    for (int y = 0; y < H; ++y) {
-        const size_t row = size_t(y) * size_t(W);
-        const char* c = &in[row];
-        const char* up = y > 0 ? c - W : c;  // a missing row: the row itself (it differs from no pixel there)
-        const char* dn = y + 1 < H ? c + W : c;
-        char* m = &mark[row];
-        auto differs = [&](int x, int l, int r) {
-            const char v = c[x];
-            return char((c[l] ^ v) | (c[r] ^ v) | (up[x] ^ v) | (dn[x] ^ v));
-        };
-        m[0] = differs(0, 0, std::min(1, W - 1));
-        for (int x = 1; x + 1 < W; ++x) m[x] = differs(x, x - 1, x + 1);
-        if (W > 1) m[W - 1] = differs(W - 1, W - 2, W - 1);
+    // Per run, a bit per pixel at or above the level (float's compare as double's: the smallest float not below it).
+    float levelF = float(level);
+    if (double(levelF) < level) levelF = std::nextafter(levelF, INFINITY);
+    std::vector<uint32_t> inBits(runCount, 0u);
+    for (size_t q = 0; q < runCount; ++q) {
+        if (runHi[q] < levelF) continue;
+        const int r = int(q % size_t(runs));
+        inBits[q] = bitsWithin(&lum[(q / size_t(runs)) * size_t(W) + size_t(r * kRun)], runLength(r), levelF, INFINITY);
     }
+    // A pixel whose 4-neighbour is on the other side (a missing neighbour, past the image's edge: the pixel itself),
+    // by bit operations on a run and its neighbours' bits, in the order of the image.
+    std::vector<char> band(n, 0);
+    std::vector<size_t> marked;
+    for (int y = 0; y < H; ++y)
+        for (int r = 0; r < runs; ++r) {
+            const size_t q = size_t(y) * size_t(runs) + size_t(r);
+            const int len = runLength(r);
+            const uint32_t all = len == kRun ? ~0u : (1u << len) - 1u, c = inBits[q];
+            const uint32_t left = (c << 1) | (r > 0 ? inBits[q - 1] >> (kRun - 1) : c & 1u);
+            const uint32_t right = (c >> 1) | (r + 1 < runs ? inBits[q + 1] << (kRun - 1) : c & (1u << (len - 1)));
+            const uint32_t down = y > 0 ? inBits[q - size_t(runs)] : c, up = y + 1 < H ? inBits[q + size_t(runs)] : c;
+            uint32_t differs = ((c ^ left) | (c ^ right) | (c ^ down) | (c ^ up)) & all;
+            const size_t first = size_t(y) * size_t(W) + size_t(r * kRun);
+            for (; differs != 0; differs &= differs - 1) marked.push_back(first + size_t(__builtin_ctz(differs)));
+        }
     // The marked pixels and their 4-neighbours (kReach) that see the surface and are not in the band yet: into it.
-    auto grow = [&](const std::vector<size_t>& marked) {
+    std::vector<uint32_t> bandBits(runCount, 0u);  // per run, a bit per pixel in the band
+    auto grow = [&](const std::vector<size_t>& seeds) {
         std::vector<size_t> added;
-        for (const size_t i : marked) {
+        for (const size_t i : seeds) {
             const int x = int(i % size_t(W)), y = int(i / size_t(W));
             for (int v = std::max(0, y - kReach); v <= std::min(H - 1, y + kReach); ++v)
                 for (int u = std::max(0, x - kReach); u <= std::min(W - 1, x + kReach); ++u) {
                     if (u != x && v != y) continue;
                     const size_t j = size_t(v) * size_t(W) + size_t(u);
-                    if (!band[j] && lum[j] >= 0.f) band[j] = 1, added.push_back(j);
+                    if (!band[j] && lum[j] >= 0.f)
+                        band[j] = 1, bandBits[runOf(j)] |= 1u << (u % kRun), added.push_back(j);
                 }
         }
         return added;
@@ -142,9 +209,6 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
             }
         });
     };
-    std::vector<size_t> marked;
-    for (size_t i = 0; i < n; ++i)
-        if (mark[i]) marked.push_back(i);
     at = grow(marked);
     // Each variant's peak and level, from the pixels asked so far; the pixels left as they are that could cross
     // either (within twice the largest change) are asked next, with their neighbours, until none is left:
@@ -155,28 +219,37 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
     };
     std::vector<Moved> moved(k);
     double outsideMax = 0;  // the largest L left as it is
-    std::vector<char> hit(n);
     size_t asked = 0;
+    std::vector<Moved> askedSoFar(k);
     for (size_t round = 0; asked < at.size() && round < kRounds && at.size() <= n / 4; ++round) {
         ask(asked);
+        const size_t askedBefore = asked;
         asked = at.size();
         // (No pixel lies above the peak: where the peak's pixel is left as it is, it is the largest.)
         float top = 0.f;
         if (!band[image.peakPixel()]) top = float(peak);
-        else
-            for (size_t i = 0; i < n; ++i) top = std::max(top, band[i] ? 0.f : lum[i]);
+        else {  // the largest L of the runs without a band pixel, then of the pixels of the others that can beat it
+            for (size_t q = 0; q < runCount; ++q) top = bandBits[q] ? top : std::max(top, runHi[q]);
+            for (size_t q = 0; q < runCount; ++q) {
+                if (!bandBits[q] || runHi[q] <= top) continue;
+                const size_t first = (q / size_t(runs)) * size_t(W) + (q % size_t(runs)) * size_t(kRun);
+                for (size_t i = first; i < first + size_t(runLength(int(q % size_t(runs)))); ++i)
+                    top = std::max(top, band[i] ? 0.f : lum[i]);
+            }
+        }
         outsideMax = top;
         // The L that a variant could cross: above its peak less twice its change, or within that of its level.
         std::vector<std::pair<double, double>> near;
         for (size_t v = 0; v < k; ++v) {
             Moved& m = moved[v];
-            m = Moved{0, outsideMax, 0, true};
-            for (size_t j = 0; j < at.size(); ++j) {
+            Moved& a = askedSoFar[v];  // over the pixels asked in earlier rounds, then this round's
+            for (size_t j = askedBefore; j < at.size(); ++j) {
                 const double d = delta[j * k + v];
-                m.finite = m.finite && std::isfinite(d);
-                m.change = std::max(m.change, std::abs(d));
-                m.peak = std::max(m.peak, double(float(L(at[j]) + d)));
+                a.finite = a.finite && std::isfinite(d);
+                a.change = std::max(a.change, std::abs(d));
+                a.peak = std::max(a.peak, double(float(L(at[j]) + d)));
             }
+            m = Moved{a.change, std::max(outsideMax, a.peak), 0, a.finite};
             if (!m.finite) continue;
             m.level = like.level > 0 ? like.level : setup.options.threshold * m.peak;
             near.push_back({m.peak - 2 * m.change, INFINITY});
@@ -190,17 +263,30 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
                 merged.back().second = std::max(merged.back().second, r.second);
             else merged.push_back(r);
         // Each interval's ends as floats that compare as the doubles do (the smallest float not below lo, the
-        // largest not above hi), one pass each; then the pixels hit that see the surface and are not in the band.
-        std::fill(hit.begin(), hit.end(), char(0));
+        // largest not above hi); then the pixels in one that see the surface and are not in the band, in the runs
+        // that reach one.
+        std::vector<std::pair<float, float>> ends;
         for (const auto& [lo, hi] : merged) {
             float flo = float(lo), fhi = float(hi);
             if (double(flo) < lo) flo = std::nextafter(flo, INFINITY);
             if (double(fhi) > hi) fhi = std::nextafter(fhi, -INFINITY);
-            for (size_t i = 0; i < n; ++i) hit[i] |= char(int(lum[i] >= flo) & int(lum[i] <= fhi));
+            ends.push_back({flo, fhi});
         }
+        auto within = [&](float lo, float hi) {
+            for (const auto& [flo, fhi] : ends)
+                if (lo <= fhi && hi >= flo) return true;
+            return false;
+        };
         marked.clear();
-        for (size_t i = 0; i < n; ++i)
-            if (hit[i] & ~band[i] & char(lum[i] >= 0.f)) marked.push_back(i);
+        for (size_t q = 0; q < runCount; ++q) {
+            if (!within(runLo[q], runHi[q])) continue;
+            const int r = int(q % size_t(runs));
+            const size_t first = (q / size_t(runs)) * size_t(W) + size_t(r * kRun);
+            uint32_t hit = 0;
+            for (const auto& [flo, fhi] : ends) hit |= bitsWithin(&lum[first], runLength(r), flo, fhi);
+            hit &= ~bandBits[q] & bitsWithin(&lum[first], runLength(r), 0.f, INFINITY);  // sees the surface
+            for (; hit != 0; hit &= hit - 1) marked.push_back(first + size_t(__builtin_ctz(hit)));
+        }
         const std::vector<size_t> added = grow(marked);
         at.insert(at.end(), added.begin(), added.end());
     }
@@ -213,16 +299,15 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
     for (size_t j = 0; j < at.size(); ++j)
         for (size_t v = 0; v < k; ++v) values[j * k + v] = float(L(at[j]) + delta[j * k + v]);
     image.setChanged(at, opt);
-    // One thread: starting a second one cost 0.6 ms on the 2-core machine, more than it saved.
-    for (size_t v = 0; v < k; ++v) {
-        const Moved& m = moved[v];
-        // What the twins were not asked does not matter: the rounds above ended when every pixel left as it is lay
-        // farther than twice the largest change from each variant's level and below its peak by as much.
-        if (!m.finite || !(m.peak > 0) || !(m.change < kMaxChange * peak)) continue;
-        const analysis::Shape s = image.measure(&values[v], k);
-        if (cropped && s.has(analysis::Flag::Clipped)) continue;  // measureInFrame draws the whole frame
-        out[v] = s;
-    }
+    // What the twins were not asked does not matter: the rounds above ended when every pixel left as it is lay
+    // farther than twice the largest change from each variant's level and below its peak by as much.
+    std::vector<size_t> which;
+    for (size_t v = 0; v < k; ++v)
+        if (moved[v].finite && moved[v].peak > 0 && moved[v].change < kMaxChange * peak) which.push_back(v);
+    const std::vector<analysis::Shape> shapes = image.measureEach(values.data(), k, which);
+    // A clipped shape in the crop is left out: measureInFrame draws the whole frame.
+    for (size_t j = 0; j < which.size(); ++j)
+        if (!(cropped && shapes[j].has(analysis::Flag::Clipped))) out[which[j]] = shapes[j];
     return out;
 }
 
