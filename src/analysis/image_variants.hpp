@@ -34,21 +34,17 @@ public:
     void setChanged(std::vector<size_t> at, const Options& opt);
     /// measureImage of the image with L = values[j * stride] at pixel at[j] of setChanged's (ignored where
     /// w <= 0): the same shape to rounding (the pixels that no variant changes are summed once, about the image's
-    /// peak). One thread at a time (measureEach runs two).
+    /// peak). One thread at a time.
     Shape measure(const float* values, size_t stride);
-    /// measure of the variants at values + which[j] (each with `stride`), on two threads: the same shapes.
-    std::vector<Shape> measureEach(const float* values, size_t stride, const std::vector<size_t>& which);
-    /// How many measures added the fixed pixels' sums (the others summed their whole region).
+    /// How many measure calls added the fixed pixels' sums (the others summed their whole region).
     long fixedSumsUsed() const { return m_fixedUsed; }
 
 private:
-    /// measure with `dense` (m_dense or a copy of it) to write the variant's L into; fixedUsed counts.
-    Shape measureIn(std::vector<float>& dense, const float* values, size_t stride, long& fixedUsed) const;
-
     const float* m_pixels;
     int m_width, m_height;
-    std::vector<size_t> m_at, m_runs;      ///< the patched pixels; the runs of 32 that hold them
+    std::vector<size_t> m_at, m_atRun;     ///< the patched pixels; the run of 32 that holds each
     std::vector<float> m_dense, m_runMax;  ///< the unpatched image's survey
+    std::vector<float> m_runMaxKept;       ///< m_runMax of the pixels left as they are (-1 where none sees the surface)
     float m_peak = 0.f;
     size_t m_peakPixel = 0;
     bool m_nonFinite = false;

@@ -8,7 +8,6 @@
 // Pass 1 is bound by memory bandwidth (the image is 4 MB at 512^2); pass 2 by the moment sums.
 
 #include "analysis/image_variants.hpp"
-#include "core/parallel.hpp"
 #include "hilite/analysis/highlight.hpp"
 
 #include "hilite/core/error.hpp"
@@ -536,6 +535,7 @@ ImageVariants::ImageVariants(const float* pixels, int width, int height)
     locatePeak(px, sv);
     if (sv.x >= 0) m_peakPixel = px.index(sv.x, sv.y);
     m_runMax = sv.runMax;
+    m_runMaxKept = sv.runMax;
     m_peak = sv.peak;
     m_nonFinite = sv.nonFinite;
     // No pixel changed yet: measure gives measureImage's shape of the image itself (default options).
@@ -554,7 +554,7 @@ void ImageVariants::setChanged(std::vector<size_t> at, const Options& opt) {
     // Per run, the bits of the pixels a variant changes or that read one as a 4-neighbour (the contour test and
     // the covered share): the pixels whose sums are the variant's own.
     m_dependent.assign(m_runMax.size(), 0u);
-    m_runs.clear();
+    m_atRun.clear();
     auto depend = [&](int x, int y) {
         if (x >= 0 && y >= 0 && x < m_width && y < m_height)
             m_dependent[size_t(y) * size_t(runs) + size_t(x / kRun)] |= 1u << (x % kRun);
@@ -563,11 +563,21 @@ void ImageVariants::setChanged(std::vector<size_t> at, const Options& opt) {
         if (i >= n) throw InputError("measureImage: a variant's pixel lies outside the image");
         patched[i] = 1;
         const int x = int(i % size_t(m_width)), y = int(i / size_t(m_width));
-        m_runs.push_back(size_t(y) * size_t(runs) + size_t(x / kRun));
+        m_atRun.push_back(size_t(y) * size_t(runs) + size_t(x / kRun));
         depend(x, y), depend(x - 1, y), depend(x + 1, y), depend(x, y - 1), depend(x, y + 1);
     }
-    std::sort(m_runs.begin(), m_runs.end());
-    m_runs.erase(std::unique(m_runs.begin(), m_runs.end()), m_runs.end());
+    // The largest L of each run that holds a changed pixel, of its other pixels (-1: none, or only sky): measure adds
+    // the variant's L to it.
+    m_runMaxKept = m_runMax;
+    for (const size_t r : m_atRun) m_runMaxKept[r] = -1.f;
+    for (const size_t r : m_atRun) {
+        if (m_runMaxKept[r] != -1.f) continue;  // done (or a run left as it was, which has no changed pixel)
+        const int y = int(r / size_t(runs)), x0 = int(r % size_t(runs)) * kRun;
+        float m = -1.f;
+        for (int x = x0; x < x0 + px.runLength(x0 / kRun); ++x)
+            m = patched[px.index(x, y)] ? m : std::max(m, px.L(x, y));
+        m_runMaxKept[r] = m;
+    }
     m_dependentRuns.clear();
     for (size_t r = 0; r < m_dependent.size(); ++r)
         if (m_dependent[r]) m_dependentRuns.push_back(r);
@@ -599,92 +609,47 @@ void ImageVariants::setChanged(std::vector<size_t> at, const Options& opt) {
     m_Tf = th.Tf;
     const std::vector<char> active = activeRuns(px, m_runMax, th, opt.subpixel);
     const std::vector<RunMask> masks = runMasks(px, active, th.Tf);
-    // In two parts, the lower and the upper rows, on two threads; the parts added in that order whatever ran them.
-    // Besides the sums: the L of the pixels left as they are nearest the threshold on either side (a variant's
-    // threshold leaves each on its side, and so every fixed pixel's contour test, while it lies in (below, above])
-    // and the smallest visible one.
-    struct Part {
-        RegionSums sums;
-        uint32_t contour = 0;
-        float lo = std::numeric_limits<float>::infinity(), below = -lo, above = lo;
-    };
-    Part parts[2];
-    const int split = m_height / 2;
-    parallelFor(2, [&](int k) {
-        Part& part = parts[k];
-        const int y0 = k == 0 ? 0 : split, y1 = k == 0 ? split : m_height;
-        for (size_t i = size_t(y0) * size_t(runs); i < size_t(y1) * size_t(runs); ++i)
-            if (active[i])
-                part.contour |= scanRun(px, masks, int(i / size_t(runs)), int(i % size_t(runs)), th, opt.subpixel,
-                                        m_shift, part.sums, ~m_dependent[i]);
-        for (size_t i = size_t(y0) * size_t(m_width); i < size_t(y1) * size_t(m_width); ++i) {
-            const float L = patched[i] ? -1.f : m_dense[i];  // -1: the sky, or a pixel a variant changes
-            part.lo = std::min(part.lo, L < 0.f ? part.lo : L);
-            part.below = std::max(part.below, L < th.Tf ? L : part.below);
-            part.above = std::min(part.above, L < th.Tf ? part.above : L);
-        }
-    });
-    RegionSums& sums = parts[0].sums;
-    sums.m.add(parts[1].sums.m);
-    sums.pixels += parts[1].sums.pixels;
-    sums.touchesSky = sums.touchesSky || parts[1].sums.touchesSky;
-    sums.touchesBorder = sums.touchesBorder || parts[1].sums.touchesBorder;
+    RegionSums sums;
+    uint32_t contour = 0;
+    for (size_t i = 0; i < active.size(); ++i)
+        if (active[i])
+            contour |= scanRun(px, masks, int(i / size_t(runs)), int(i % size_t(runs)), th, opt.subpixel, m_shift, sums,
+                               ~m_dependent[i]);
     m_fixed = {sums.m.s0, sums.m.su, sums.m.sv, sums.m.suu, sums.m.suv, sums.m.svv};
     m_fixedPixels = sums.pixels;
     m_fixedSky = sums.touchesSky;
     m_fixedBorder = sums.touchesBorder;
-    m_fixedContour = (parts[0].contour | parts[1].contour) != 0;
-    const float lo = std::min(parts[0].lo, parts[1].lo), below = std::max(parts[0].below, parts[1].below),
-                above = std::min(parts[0].above, parts[1].above);
+    m_fixedContour = contour != 0;
+    // The L of the pixels left as they are nearest the threshold on either side: a variant's threshold leaves
+    // each on its side (and so every fixed pixel's contour test) while it lies in (below, above].
+    float lo = std::numeric_limits<float>::infinity(), below = -lo, above = lo;
+    for (size_t i = 0; i < n; ++i) {
+        const float L = patched[i] ? -1.f : m_dense[i];  // -1: the sky, or a pixel a variant changes
+        lo = std::min(lo, L < 0.f ? lo : L);
+        below = std::max(below, L < th.Tf ? L : below);
+        above = std::min(above, L < th.Tf ? above : L);
+    }
     m_minKept = lo, m_below = below, m_above = above;
     m_fixedValid = true;
 }
 
 Shape ImageVariants::measure(const float* values, size_t stride) {
-    return measureIn(m_dense, values, stride, m_fixedUsed);
-}
-
-std::vector<Shape> ImageVariants::measureEach(const float* values, size_t stride, const std::vector<size_t>& which) {
-    std::vector<Shape> shapes(which.size());
-    if (which.size() < 2) {
-        for (size_t j = 0; j < which.size(); ++j) shapes[j] = measure(values + which[j], stride);
-        return shapes;
-    }
-    // The variants alternate between two threads, the second with a copy of the dense L to write into.
-    long used[2] = {0, 0};
-    parallelFor(2, [&](int t) {
-        std::vector<float> copy;
-        if (t == 1) copy = m_dense;
-        for (size_t j = size_t(t); j < which.size(); j += 2)
-            shapes[j] = measureIn(t == 0 ? m_dense : copy, values + which[j], stride, used[t]);
-    });
-    m_fixedUsed += used[0] + used[1];
-    return shapes;
-}
-
-Shape ImageVariants::measureIn(std::vector<float>& dense, const float* values, size_t stride, long& fixedUsed) const {
-    // dense: the survey's dense L, with the variant's L written in, and taken out again below
+    std::vector<float>& dense = m_dense;  // with the variant's L written in, and taken out again below
     const Pixels px{m_pixels, m_width, m_height, dense.data()};
     // survey()'s values for the patched pixels, then for the runs that hold them.
     Survey sv;
     sv.minVisible = m_minKept;
     sv.nonFinite = m_nonFiniteKept;
+    sv.runMax = m_runMaxKept;
     for (size_t j = 0; j < m_at.size(); ++j) {
-        const size_t i = m_at[j];
-        if (!(m_pixels[4 * i + 3] > 0.f)) continue;  // a pixel that sees no surface keeps no L
+        if (m_kept[j] < 0.f) continue;  // a pixel that sees no surface (w <= 0) keeps no L
         const float raw = values[j * stride], L = std::max(0.f, raw);
         sv.nonFinite = sv.nonFinite || !std::isfinite(raw);
-        dense[i] = L;
+        dense[m_at[j]] = L;
         sv.minVisible = std::min(sv.minVisible, L);
+        sv.runMax[m_atRun[j]] = std::max(sv.runMax[m_atRun[j]], L);
     }
-    sv.runMax = m_runMax;
     const int runs = px.runs();
-    for (const size_t r : m_runs) {
-        const int y = int(r / size_t(runs)), x0 = int(r % size_t(runs)) * kRun;
-        float m = -1.f;
-        for (int x = x0; x < x0 + px.runLength(x0 / kRun); ++x) m = std::max(m, px.L(x, y));
-        sv.runMax[r] = m;
-    }
     for (const float m : sv.runMax) sv.peak = std::max(sv.peak, m);
     const Shape shape = finish(px, sv, m_opt, [&](const Threshold& th, dvec2& shift) {
         // The fixed pixels' sums hold where this threshold leaves every pixel left as it is on its side, and, where
@@ -692,7 +657,7 @@ Shape ImageVariants::measureIn(std::vector<float>& dense, const float* values, s
         const bool fixedHolds =
             m_fixedValid && (th.Tf == m_Tf || (!m_fixedContour && m_below < th.Tf && th.Tf <= m_above));
         if (!fixedHolds) return scanRegion(px, sv, th, m_opt.subpixel, shift);
-        ++fixedUsed;
+        ++m_fixedUsed;
         shift = m_shift;
         RegionSums sums;
         sums.m = Sums{m_fixed[0], m_fixed[1], m_fixed[2], m_fixed[3], m_fixed[4], m_fixed[5]};

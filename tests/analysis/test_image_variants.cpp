@@ -109,12 +109,6 @@ TEST_CASE("analysis::ImageVariants: each variant's shape is measureImage's of it
                 if (v <= 1 || (level > 0 && v != 3)) CHECK(fixed);
                 if ((level == 0 && v == 2) || v == 3) CHECK_FALSE(fixed);
             }
-            // On two threads, each variant against its own measure (those past float's range too).
-            const std::vector<size_t> which = {4, 0, 3, 2, 1};
-            const std::vector<Shape> each = variants.measureEach(values.data(), k, which);
-            REQUIRE(each.size() == which.size());
-            for (size_t j = 0; j < which.size(); ++j) checkSame(each[j], variants.measure(&values[which[j]], k));
-            CHECK(variants.luminance() == before);
             CHECK(measureImage(img.data.data(), W, H, opt).flags.empty());
         }
     ImageVariants variants(img.data.data(), W, H);
