@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -47,6 +48,16 @@ uint32_t bitsWithin(const float* c, int n, float lo, float hi) {
 #endif
     for (; x < n; ++x) bits |= uint32_t(c[x] >= lo && c[x] <= hi) << x;
     return bits;
+}
+
+/// The smallest float not below x, and the largest not above it: a float L compares with them as double(L) with x.
+float floatAtLeast(double x) {
+    const float f = float(x);
+    return double(f) < x ? std::nextafter(f, INFINITY) : f;
+}
+float floatAtMost(double x) {
+    const float f = float(x);
+    return double(f) > x ? std::nextafter(f, -INFINITY) : f;
 }
 
 /// The smallest and the largest of the n >= 1 values c.
@@ -140,26 +151,20 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
     const int runs = (W + kRun - 1) / kRun;
     const size_t runCount = size_t(runs) * size_t(H);
     auto runOf = [&](size_t i) { return (i / size_t(W)) * size_t(runs) + (i % size_t(W)) / size_t(kRun); };
-    auto runLength = [&](int r) { return std::min(kRun, W - r * kRun); };
+    auto runLength = [&](size_t q) { return std::min(kRun, W - int(q % size_t(runs)) * kRun); };
+    auto firstPixel = [&](size_t q) { return (q / size_t(runs)) * size_t(W) + (q % size_t(runs)) * size_t(kRun); };
     std::vector<float> runLo(runCount), runHi(runCount);
-    for (int y = 0; y < H; ++y)
-        for (int r = 0; r < runs; ++r) {
-            const auto [lo, hi] = extremes(&lum[size_t(y) * size_t(W) + size_t(r * kRun)], runLength(r));
-            runLo[size_t(y) * size_t(runs) + size_t(r)] = lo, runHi[size_t(y) * size_t(runs) + size_t(r)] = hi;
-        }
+    for (size_t q = 0; q < runCount; ++q) std::tie(runLo[q], runHi[q]) = extremes(&lum[firstPixel(q)], runLength(q));
 
     // The band: the contour's pixels (a 4-neighbour on the other side of the level: measureImage's contour test)
     // and their 4-neighbours (kReach; what its covered share of a contour pixel reads). The 8-neighbourhoods
     // asked 4,908 pixels at 60 deg where these are 3,656 (table_error the same to 4 digits or more).
     const double level = like.level > 0 ? like.level : setup.options.threshold * peak;
     // Per run, a bit per pixel at or above the level (float's compare as double's: the smallest float not below it).
-    float levelF = float(level);
-    if (double(levelF) < level) levelF = std::nextafter(levelF, INFINITY);
+    const float levelF = floatAtLeast(level);
     std::vector<uint32_t> inBits(runCount, 0u);
     for (size_t q = 0; q < runCount; ++q) {
-        if (runHi[q] < levelF) continue;
-        const int r = int(q % size_t(runs));
-        inBits[q] = bitsWithin(&lum[(q / size_t(runs)) * size_t(W) + size_t(r * kRun)], runLength(r), levelF, INFINITY);
+        if (runHi[q] >= levelF) inBits[q] = bitsWithin(&lum[firstPixel(q)], runLength(q), levelF, INFINITY);
     }
     // A pixel whose 4-neighbour is on the other side (a missing neighbour, past the image's edge: the pixel itself),
     // by bit operations on a run and its neighbours' bits, in the order of the image.
@@ -168,14 +173,14 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
     for (int y = 0; y < H; ++y)
         for (int r = 0; r < runs; ++r) {
             const size_t q = size_t(y) * size_t(runs) + size_t(r);
-            const int len = runLength(r);
+            const int len = runLength(q);
             const uint32_t all = len == kRun ? ~0u : (1u << len) - 1u, c = inBits[q];
             const uint32_t left = (c << 1) | (r > 0 ? inBits[q - 1] >> (kRun - 1) : c & 1u);
             const uint32_t right = (c >> 1) | (r + 1 < runs ? inBits[q + 1] << (kRun - 1) : c & (1u << (len - 1)));
             const uint32_t down = y > 0 ? inBits[q - size_t(runs)] : c, up = y + 1 < H ? inBits[q + size_t(runs)] : c;
             uint32_t differs = ((c ^ left) | (c ^ right) | (c ^ down) | (c ^ up)) & all;
-            const size_t first = size_t(y) * size_t(W) + size_t(r * kRun);
-            for (; differs != 0; differs &= differs - 1) marked.push_back(first + size_t(__builtin_ctz(differs)));
+            for (; differs != 0; differs &= differs - 1)
+                marked.push_back(firstPixel(q) + size_t(__builtin_ctz(differs)));
         }
     // The marked pixels and their 4-neighbours (kReach) that see the surface and are not in the band yet: into it.
     std::vector<uint32_t> bandBits(runCount, 0u);  // per run, a bit per pixel in the band
@@ -232,8 +237,7 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
             for (size_t q = 0; q < runCount; ++q) top = bandBits[q] ? top : std::max(top, runHi[q]);
             for (size_t q = 0; q < runCount; ++q) {
                 if (!bandBits[q] || runHi[q] <= top) continue;
-                const size_t first = (q / size_t(runs)) * size_t(W) + (q % size_t(runs)) * size_t(kRun);
-                for (size_t i = first; i < first + size_t(runLength(int(q % size_t(runs)))); ++i)
+                for (size_t i = firstPixel(q); i < firstPixel(q) + size_t(runLength(q)); ++i)
                     top = std::max(top, band[i] ? 0.f : lum[i]);
             }
         }
@@ -266,12 +270,7 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
         // largest not above hi); then the pixels in one that see the surface and are not in the band, in the runs
         // that reach one.
         std::vector<std::pair<float, float>> ends;
-        for (const auto& [lo, hi] : merged) {
-            float flo = float(lo), fhi = float(hi);
-            if (double(flo) < lo) flo = std::nextafter(flo, INFINITY);
-            if (double(fhi) > hi) fhi = std::nextafter(fhi, -INFINITY);
-            ends.push_back({flo, fhi});
-        }
+        for (const auto& [lo, hi] : merged) ends.push_back({floatAtLeast(lo), floatAtMost(hi)});
         auto within = [&](float lo, float hi) {
             for (const auto& [flo, fhi] : ends)
                 if (lo <= fhi && hi >= flo) return true;
@@ -280,11 +279,10 @@ std::vector<std::optional<analysis::Shape>> measureInFrameByTwin(const render::S
         marked.clear();
         for (size_t q = 0; q < runCount; ++q) {
             if (!within(runLo[q], runHi[q])) continue;
-            const int r = int(q % size_t(runs));
-            const size_t first = (q / size_t(runs)) * size_t(W) + size_t(r * kRun);
+            const size_t first = firstPixel(q);
             uint32_t hit = 0;
-            for (const auto& [flo, fhi] : ends) hit |= bitsWithin(&lum[first], runLength(r), flo, fhi);
-            hit &= ~bandBits[q] & bitsWithin(&lum[first], runLength(r), 0.f, INFINITY);  // sees the surface
+            for (const auto& [flo, fhi] : ends) hit |= bitsWithin(&lum[first], runLength(q), flo, fhi);
+            hit &= ~bandBits[q] & bitsWithin(&lum[first], runLength(q), 0.f, INFINITY);  // sees the surface
             for (; hit != 0; hit &= hit - 1) marked.push_back(first + size_t(__builtin_ctz(hit)));
         }
         const std::vector<size_t> added = grow(marked);
