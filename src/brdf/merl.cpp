@@ -280,6 +280,21 @@ MeasuredBrdf read(const std::string& path, const std::string& what) {
 namespace {
 std::mutex heldMutex;
 Held held;
+
+/// Fixes glibc's thresholds once, before the first table: its default raises the mmap threshold to the size of each
+/// big buffer freed (up to 32 MiB), after which a table's 17-47 MB buffers (its doubles, its GL texture in
+/// llvmpipe, its luminances) come from the heap, where their holes and the small blocks between them pile up: 30
+/// tables more grew a sweep by 0 to 97 MB from run to run (CI failed at 97). From 16 MiB a buffer is mapped and
+/// unmapped whole (30 tables more: 0.1 MB); the heap's top is kept up to 32 MiB, as glibc's own rule would, so
+/// that a row's buffers below 16 MiB are not faulted in again each time (the threshold alone, trimming from
+/// 128 KiB, ran 1.8x slower). Process-wide: the library's host keeps it. docs/speed.md has the numbers.
+void mapTablesWhole() {
+    static const bool once = [] {
+        constexpr int kMmapFrom = 16 << 20;
+        return mallopt(M_MMAP_THRESHOLD, kMmapFrom) == 1 && mallopt(M_TRIM_THRESHOLD, 2 * kMmapFrom) == 1;
+    }();
+    (void)once;
+}
 }  // namespace
 
 Held tablesHeld(bool resetPeak) {
@@ -303,6 +318,7 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
     static std::mutex& mutex = *new std::mutex;
     static std::map<std::string, Entry>& cache = *new std::map<std::string, Entry>;
     static auto& recent = *new std::deque<std::shared_ptr<const MeasuredBrdf>>;  // most recent first
+    mapTablesWhole();
     struct stat st {};
     const bool known = ::stat(path.c_str(), &st) == 0;
     const long long size = known ? (long long)st.st_size : -1;
@@ -322,9 +338,8 @@ std::shared_ptr<const MeasuredBrdf> load(const std::string& path, const std::str
     // Counted while alive (tablesHeld): a test of a sweep's memory sees how many tables it held at once.
     const std::shared_ptr<const MeasuredBrdf> table(new MeasuredBrdf(read(path, what)), [](const MeasuredBrdf* t) {
         delete t;
-        // Give the freed pages back: glibc raises its mmap threshold after the first big free, so the next tables'
-        // 17-35 MB buffers come from the heap, whose holes a process keeps (measured: a sweep over 10 tables
-        // peaked at 752 MB, over 30 at 943 MB, 100 fitted at 1.51 GB; with the trim 571 MB flat).
+        // The table's big buffers were unmapped (mapTablesWhole); the trim gives back the heap's free pages too
+        // (a sweep's memory 10 MB lower with it, flat either way).
         malloc_trim(0);
         const std::lock_guard<std::mutex> count(heldMutex);
         --held.now;
