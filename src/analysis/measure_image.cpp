@@ -8,6 +8,7 @@
 // Pass 1 is bound by memory bandwidth (the image is 4 MB at 512^2); pass 2 by the moment sums.
 
 #include "analysis/image_variants.hpp"
+#include "analysis/runs.hpp"
 #include "hilite/analysis/highlight.hpp"
 
 #include "hilite/core/error.hpp"
@@ -30,8 +31,6 @@
 namespace hilite::analysis {
 
 namespace {
-
-constexpr int kRun = 32;  ///< pixels per run of a row: one 32-bit mask
 
 /// Read-only view of the (L, u, v, w) image, plus the dense copy of L (L where w > 0, else -1).
 struct Pixels {

@@ -1,6 +1,7 @@
 #include "measurement/in_frame_twin.hpp"
 
 #include "analysis/image_variants.hpp"
+#include "analysis/runs.hpp"
 #include "core/parallel.hpp"
 #include "render/cpu_view.hpp"
 
@@ -15,40 +16,22 @@
 #include <utility>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace hilite::measurement {
 
 namespace {
+
+using analysis::bitsWithin;
+using analysis::extremes;
+using analysis::kRun;
 
 /// Pixels within this many along a row or a column of a contour pixel (one with a 4-neighbour on the other side of
 /// the level): measureImage reads a contour pixel's 4-neighbours to place the contour in it, so they must hold the
 /// variant's L too.
 constexpr int kReach = 1;
-/// Pixels per run of a row that the scans skip or visit whole.
-constexpr int kRun = 32;
 /// Rounds of asking the twins about pixels that the changes found so far could move.
 constexpr size_t kRounds = 4;
 /// Beyond this share of the peak a variant is not "a little different": it is rendered.
 constexpr double kMaxChange = 0.1;
-
-/// Bit x: lo <= c[x] <= hi, of the n <= kRun values c (four compares at a time: the scans below test every pixel of
-/// the runs they visit).
-uint32_t bitsWithin(const float* c, int n, float lo, float hi) {
-    uint32_t bits = 0;
-    int x = 0;
-#if defined(__SSE2__)
-    const __m128 l = _mm_set1_ps(lo), h = _mm_set1_ps(hi);
-    for (; x + 4 <= n; x += 4) {
-        const __m128 v = _mm_loadu_ps(c + x);
-        bits |= uint32_t(_mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(v, l), _mm_cmple_ps(v, h)))) << x;
-    }
-#endif
-    for (; x < n; ++x) bits |= uint32_t(c[x] >= lo && c[x] <= hi) << x;
-    return bits;
-}
 
 /// The smallest float not below x, and the largest not above it: a float L compares with them as double(L) with x.
 float floatAtLeast(double x) {
@@ -58,26 +41,6 @@ float floatAtLeast(double x) {
 float floatAtMost(double x) {
     const float f = float(x);
     return double(f) > x ? std::nextafter(f, -INFINITY) : f;
-}
-
-/// The smallest and the largest of the n >= 1 values c.
-std::pair<float, float> extremes(const float* c, int n) {
-    float lo = c[0], hi = c[0];
-    int x = 0;
-#if defined(__SSE2__)
-    if (n >= 4) {
-        __m128 l = _mm_loadu_ps(c), h = l;
-        for (x = 4; x + 4 <= n; x += 4) {
-            const __m128 v = _mm_loadu_ps(c + x);
-            l = _mm_min_ps(l, v), h = _mm_max_ps(h, v);
-        }
-        alignas(16) float ls[4], hs[4];
-        _mm_store_ps(ls, l), _mm_store_ps(hs, h);
-        for (int k = 0; k < 4; ++k) lo = std::min(lo, ls[k]), hi = std::max(hi, hs[k]);
-    }
-#endif
-    for (; x < n; ++x) lo = std::min(lo, c[x]), hi = std::max(hi, c[x]);
-    return {lo, hi};
 }
 
 }  // namespace
